@@ -1,0 +1,564 @@
+#include "vtkDEMModelConversion.h"
+
+#include "dem/Errors.h"
+#include "dem/SizeClass.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
+#include <vtkIntArray.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTypeInt64Array.h>
+#include <vtkTypeUInt32Array.h>
+#include <vtkTypeUInt64Array.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace rockdem
+{
+namespace
+{
+// ---- writing ---------------------------------------------------------------------
+
+vtkSmartPointer<vtkDoubleArray> VectorArray(const char* name, const std::vector<dem::Vec3>& v)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  if (!v.empty())
+  {
+    std::memcpy(a->GetPointer(0), v.data(), v.size() * sizeof(dem::Vec3));
+  }
+  return a;
+}
+
+vtkSmartPointer<vtkDoubleArray> ScalarArray(const char* name, const std::vector<double>& v)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  std::copy(v.begin(), v.end(), a->GetPointer(0));
+  return a;
+}
+
+void AddField(vtkFieldData* fd, const char* name, std::initializer_list<double> values)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  vtkIdType i = 0;
+  for (double v : values)
+  {
+    a->SetValue(i++, v);
+  }
+  fd->AddArray(a);
+}
+
+void AddIntField(vtkFieldData* fd, const char* name, std::initializer_list<long long> values)
+{
+  vtkNew<vtkTypeInt64Array> a;
+  a->SetName(name);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  vtkIdType i = 0;
+  for (long long v : values)
+  {
+    a->SetValue(i++, static_cast<vtkTypeInt64>(v));
+  }
+  fd->AddArray(a);
+}
+
+// ---- reading ---------------------------------------------------------------------
+
+[[noreturn]] void Missing(const std::string& what)
+{
+  throw dem::InputError("Input is not a RockDEM model: " + what +
+    " is missing (connect the output of a DEM source or filter).");
+}
+
+vtkDataArray* RequireArray(vtkFieldData* fd, const char* name, vtkIdType tuples, int comps)
+{
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  if (!a)
+  {
+    Missing(std::string("array '") + name + "'");
+  }
+  if (a->GetNumberOfTuples() != tuples || a->GetNumberOfComponents() != comps)
+  {
+    throw dem::InputError(std::string("RockDEM model array '") + name + "' has " +
+      std::to_string(a->GetNumberOfTuples()) + " x " + std::to_string(a->GetNumberOfComponents()) +
+      " values; expected " + std::to_string(tuples) + " x " + std::to_string(comps) + ".");
+  }
+  return a;
+}
+
+double Field(vtkFieldData* fd, const char* name, int component = 0, int comps = 1)
+{
+  return RequireArray(fd, name, comps, 1)->GetComponent(component, 0);
+}
+
+vtkTypeInt64 IntField(vtkFieldData* fd, const char* name, int component = 0, int comps = 1)
+{
+  auto* a = vtkTypeInt64Array::SafeDownCast(RequireArray(fd, name, comps, 1));
+  if (!a)
+  {
+    Missing(std::string("64-bit integer array '") + name + "'");
+  }
+  return a->GetValue(component);
+}
+
+void ReadVectors(vtkPointData* pd, const char* name, vtkIdType n, std::vector<dem::Vec3>& out)
+{
+  auto* a = vtkDoubleArray::SafeDownCast(RequireArray(pd, name, n, 3));
+  if (!a)
+  {
+    Missing(std::string("double array '") + name + "'");
+  }
+  out.resize(static_cast<std::size_t>(n));
+  if (n > 0)
+  {
+    std::memcpy(out.data(), a->GetPointer(0), static_cast<std::size_t>(n) * sizeof(dem::Vec3));
+  }
+}
+
+void ReadScalars(vtkPointData* pd, const char* name, vtkIdType n, std::vector<double>& out)
+{
+  auto* a = vtkDoubleArray::SafeDownCast(RequireArray(pd, name, n, 1));
+  if (!a)
+  {
+    Missing(std::string("double array '") + name + "'");
+  }
+  out.assign(a->GetPointer(0), a->GetPointer(0) + n);
+}
+} // namespace
+
+void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
+{
+  const dem::Particles& p = model.particles;
+  const auto n = static_cast<vtkIdType>(p.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetData(VectorArray("Points", p.position));
+  output->SetPoints(points);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfTuples(n + 1);
+  connectivity->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetVerts(verts);
+
+  vtkPointData* pd = output->GetPointData();
+  vtkNew<vtkTypeInt64Array> ids;
+  ids->SetName("Id");
+  ids->SetNumberOfTuples(n);
+  std::copy(p.id.begin(), p.id.end(), ids->GetPointer(0));
+  pd->AddArray(ids);
+  pd->SetGlobalIds(nullptr);
+
+  pd->AddArray(ScalarArray("Radius", p.radius));
+  pd->SetActiveScalars("Radius");
+  pd->AddArray(VectorArray("Velocity", p.velocity));
+  pd->AddArray(VectorArray("AngularVelocity", p.angularVelocity));
+  pd->AddArray(VectorArray("Displacement", p.displacement));
+  pd->AddArray(VectorArray("Force", p.force));
+  pd->AddArray(VectorArray("Torque", p.torque));
+  pd->AddArray(ScalarArray("Mass", p.mass));
+  pd->AddArray(ScalarArray("Inertia", p.inertia));
+
+  vtkNew<vtkTypeUInt32Array> flags;
+  flags->SetName("Flags");
+  flags->SetNumberOfTuples(n);
+  std::copy(p.flags.begin(), p.flags.end(), flags->GetPointer(0));
+  pd->AddArray(flags);
+
+  // Derived, for colouring and thresholding (not read back).
+  vtkNew<vtkUnsignedCharArray> fixed;
+  fixed->SetName("Fixed");
+  fixed->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> sizeClass;
+  sizeClass->SetName("SizeClass");
+  sizeClass->SetNumberOfTuples(n);
+  const std::vector<std::uint8_t> classes = dem::sizeClasses(p.radius);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    fixed->SetValue(i, (p.flags[i] & dem::FlagFixed) ? 1 : 0);
+    sizeClass->SetValue(i, classes[i]);
+  }
+  pd->AddArray(fixed);
+  pd->AddArray(sizeClass);
+}
+
+void WallsToPolyData(const dem::Model& model, vtkPolyData* output)
+{
+  output->Initialize();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> quads;
+  vtkNew<vtkIntArray> axis;
+  axis->SetName("Axis");
+  vtkNew<vtkIntArray> side;
+  side->SetName("Side");
+  vtkNew<vtkDoubleArray> position;
+  position->SetName("Position");
+  vtkNew<vtkDoubleArray> velocity;
+  velocity->SetName("Velocity");
+  vtkNew<vtkDoubleArray> force;
+  force->SetName("Force");
+  force->SetNumberOfComponents(3);
+  vtkNew<vtkDoubleArray> stress;
+  stress->SetName("Stress");
+  // The face spans the current positions of the walls on the other two axes.
+  auto extent = [&](int k, int s) {
+    const dem::Domain& d = model.domain;
+    if (model.walls.size() == 6 && model.walls[2 * k].active)
+    {
+      return model.walls[2 * k + s].position;
+    }
+    return s == 0 ? d.origin[k] : d.origin[k] + d.size[k];
+  };
+  for (const dem::Wall& wall : model.walls)
+  {
+    if (!wall.active)
+    {
+      continue;
+    }
+    const int a = (wall.axis + 1) % 3;
+    const int b = (wall.axis + 2) % 3;
+    vtkIdType ids[4];
+    for (int c = 0; c < 4; ++c)
+    {
+      double x[3];
+      x[wall.axis] = wall.position;
+      x[a] = extent(a, (c == 1 || c == 2) ? 1 : 0);
+      x[b] = extent(b, c >= 2 ? 1 : 0);
+      ids[c] = points->InsertNextPoint(x);
+    }
+    quads->InsertNextCell(4, ids);
+    const double area = (extent(a, 1) - extent(a, 0)) * (extent(b, 1) - extent(b, 0));
+    axis->InsertNextValue(wall.axis);
+    side->InsertNextValue(wall.side);
+    position->InsertNextValue(wall.position);
+    velocity->InsertNextValue(wall.velocity);
+    force->InsertNextTuple3(wall.force.x(), wall.force.y(), wall.force.z());
+    // Compressive stress on the face: the normal push of the particles over its area.
+    stress->InsertNextValue(area > 0.0 ? -wall.force.dot(wall.normal()) / area : 0.0);
+  }
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  for (vtkDataArray* array : std::initializer_list<vtkDataArray*>{ axis, side, position, velocity, force, stress })
+  {
+    output->GetCellData()->AddArray(array);
+  }
+}
+
+void ContactsToPolyData(const dem::Model& model, vtkPolyData* output)
+{
+  output->Initialize();
+  const dem::ContactHistory& h = model.contacts;
+  const auto n = static_cast<vtkIdType>(h.size());
+  vtkNew<vtkTypeInt64Array> idA;
+  idA->SetName("IdA");
+  idA->SetNumberOfTuples(n);
+  std::copy(h.idA.begin(), h.idA.end(), idA->GetPointer(0));
+  vtkNew<vtkTypeInt64Array> idB;
+  idB->SetName("IdB");
+  idB->SetNumberOfTuples(n);
+  std::copy(h.idB.begin(), h.idB.end(), idB->GetPointer(0));
+  vtkFieldData* fd = output->GetFieldData();
+  fd->AddArray(idA);
+  fd->AddArray(idB);
+  fd->AddArray(VectorArray("ShearSpring", h.shearSpring));
+  fd->AddArray(VectorArray("RollingSpring", h.rollingSpring));
+}
+
+void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output)
+{
+  const dem::Vec3 lo = domain.origin;
+  const dem::Vec3 hi = domain.upper();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int k = 0; k < 8; ++k)
+  {
+    points->InsertNextPoint((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(),
+      (k & 4) ? hi.z() : lo.z());
+  }
+  vtkNew<vtkCellArray> lines;
+  // Edges join corners that differ in exactly one bit.
+  for (int a = 0; a < 8; ++a)
+  {
+    for (int bit = 1; bit < 8; bit <<= 1)
+    {
+      const int b = a | bit;
+      if (b != a)
+      {
+        const vtkIdType edge[2] = { a, b };
+        lines->InsertNextCell(2, edge);
+      }
+    }
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetLines(lines);
+}
+
+void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output)
+{
+  output->Initialize();
+  vtkNew<vtkPolyData> particles;
+  ParticlesToPolyData(model, particles);
+  vtkNew<vtkPolyData> walls;
+  WallsToPolyData(model, walls);
+  vtkNew<vtkPolyData> contacts;
+  ContactsToPolyData(model, contacts);
+  output->SetNumberOfBlocks(3);
+  output->SetBlock(0, particles);
+  output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), ParticlesBlockName);
+  output->SetBlock(1, walls);
+  output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), WallsBlockName);
+  output->SetBlock(2, contacts);
+  output->GetMetaData(2u)->Set(vtkCompositeDataSet::NAME(), ContactsBlockName);
+
+  vtkFieldData* fd = output->GetFieldData();
+  const dem::Domain& d = model.domain;
+  const dem::Material& m = model.material;
+  AddIntField(fd, "RockDEMModelVersion", { ModelLayoutVersion });
+  AddField(fd, "DomainOrigin", { d.origin.x(), d.origin.y(), d.origin.z() });
+  AddField(fd, "DomainSize", { d.size.x(), d.size.y(), d.size.z() });
+  AddIntField(fd, "DomainPeriodic", { d.periodic[0], d.periodic[1], d.periodic[2] });
+  AddIntField(fd, "Section2D", { d.section2D ? 1 : 0 });
+  AddField(fd, "Density", { m.density });
+  AddField(fd, "YoungsModulus", { m.youngsModulus });
+  AddField(fd, "PoissonsRatio", { m.poissonsRatio });
+  AddField(fd, "Restitution", { m.restitution });
+  AddField(fd, "Friction", { m.friction });
+  AddField(fd, "RollingFriction", { m.rollingFriction });
+  AddField(fd, "Gravity", { model.gravity.x(), model.gravity.y(), model.gravity.z() });
+  AddField(fd, "Time", { model.clock.time });
+  AddIntField(fd, "Step", { model.clock.step });
+  AddIntField(fd, "NextId", { model.nextId });
+  const dem::SolverSettings& solver = model.solver;
+  AddIntField(fd, "ContactLaw", { static_cast<int>(solver.contactLaw) });
+  AddField(fd, "TimestepSafety", { solver.timestepSafety });
+  AddField(fd, "RequestedTimestep", { solver.requestedTimestep });
+  AddField(fd, "SettlingDamping", { solver.settlingDamping });
+  AddField(fd, "VerletSkin", { solver.skin });
+  AddIntField(fd, "Threads", { solver.threads });
+  AddIntField(fd, "ParallelThreshold", { solver.parallelThreshold });
+  AddField(fd, "Timestep", { model.clock.timestep });
+  // Walls: six slots (low/high face of X, Y, Z), or none before the solver first ran.
+  const vtkIdType nw = static_cast<vtkIdType>(model.walls.size());
+  vtkNew<vtkDoubleArray> wallState;
+  wallState->SetName("WallState");
+  wallState->SetNumberOfComponents(WallStateComponents);
+  wallState->SetNumberOfTuples(nw);
+  for (vtkIdType w = 0; w < nw; ++w)
+  {
+    const dem::Wall& wall = model.walls[static_cast<std::size_t>(w)];
+    const double state[WallStateComponents] = { static_cast<double>(wall.axis),
+      static_cast<double>(wall.side), wall.position, wall.velocity, wall.active ? 1.0 : 0.0,
+      wall.force.x(), wall.force.y(), wall.force.z() };
+    wallState->SetTuple(w, state);
+  }
+  fd->AddArray(wallState);
+  vtkNew<vtkTypeUInt64Array> rng;
+  rng->SetName("RandomState");
+  rng->SetNumberOfTuples(4);
+  for (int k = 0; k < 4; ++k)
+  {
+    rng->SetValue(k, model.random.state()[k]);
+  }
+  fd->AddArray(rng);
+}
+
+namespace
+{
+vtkPolyData* NamedBlock(vtkMultiBlockDataSet* input, const char* wanted)
+{
+  for (unsigned int b = 0; b < input->GetNumberOfBlocks(); ++b)
+  {
+    const char* name =
+      input->HasMetaData(b) ? input->GetMetaData(b)->Get(vtkCompositeDataSet::NAME()) : nullptr;
+    if (name && std::string(name) == wanted)
+    {
+      return vtkPolyData::SafeDownCast(input->GetBlock(b));
+    }
+  }
+  return nullptr;
+}
+
+void ContactsFromPolyData(vtkMultiBlockDataSet* input, dem::Model& model)
+{
+  vtkPolyData* block = NamedBlock(input, ContactsBlockName);
+  if (!block)
+  {
+    Missing("block 'Contacts'");
+  }
+  vtkFieldData* fd = block->GetFieldData();
+  vtkDataArray* a = fd->GetArray("IdA");
+  if (!a)
+  {
+    Missing("array 'IdA' of block 'Contacts'");
+  }
+  const vtkIdType n = a->GetNumberOfTuples();
+  auto* idA = vtkTypeInt64Array::SafeDownCast(RequireArray(fd, "IdA", n, 1));
+  auto* idB = vtkTypeInt64Array::SafeDownCast(RequireArray(fd, "IdB", n, 1));
+  if (!idA || !idB)
+  {
+    Missing("64-bit integer arrays 'IdA' and 'IdB'");
+  }
+  dem::ContactHistory& h = model.contacts;
+  h.idA.assign(idA->GetPointer(0), idA->GetPointer(0) + n);
+  h.idB.assign(idB->GetPointer(0), idB->GetPointer(0) + n);
+  auto readVectors = [&](const char* name, vtkIdType tuples, std::vector<dem::Vec3>& out) {
+    auto* v = vtkDoubleArray::SafeDownCast(RequireArray(fd, name, tuples, 3));
+    if (!v)
+    {
+      Missing(std::string("double array '") + name + "'");
+    }
+    out.resize(static_cast<std::size_t>(tuples));
+    if (tuples > 0)
+    {
+      std::memcpy(out.data(), v->GetPointer(0), static_cast<std::size_t>(tuples) * sizeof(dem::Vec3));
+    }
+  };
+  readVectors("ShearSpring", n, h.shearSpring);
+  vtkDataArray* rolling = fd->GetArray("RollingSpring");
+  readVectors("RollingSpring", rolling ? rolling->GetNumberOfTuples() : 0, h.rollingSpring);
+  if (!h.rollingSpring.empty() && h.rollingSpring.size() != h.shearSpring.size())
+  {
+    throw dem::InputError("RockDEM model block 'Contacts' has " +
+      std::to_string(h.rollingSpring.size()) + " rolling springs for " +
+      std::to_string(h.shearSpring.size()) + " contacts.");
+  }
+}
+} // namespace
+
+dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
+{
+  if (!input)
+  {
+    Missing("the model (no input data)");
+  }
+  vtkPolyData* particles = NamedBlock(input, ParticlesBlockName);
+  if (!particles)
+  {
+    Missing("block 'Particles'");
+  }
+
+  vtkFieldData* fd = input->GetFieldData();
+  const vtkTypeInt64 version = IntField(fd, "RockDEMModelVersion");
+  if (version != ModelLayoutVersion)
+  {
+    throw dem::InputError("RockDEM model layout version " + std::to_string(version) +
+      " is not supported: this build reads version " + std::to_string(ModelLayoutVersion) + ".");
+  }
+  dem::Model model;
+  for (int k = 0; k < 3; ++k)
+  {
+    model.domain.origin[k] = Field(fd, "DomainOrigin", k, 3);
+    model.domain.size[k] = Field(fd, "DomainSize", k, 3);
+    model.domain.periodic[k] = IntField(fd, "DomainPeriodic", k, 3) != 0;
+    model.gravity[k] = Field(fd, "Gravity", k, 3);
+  }
+  model.domain.section2D = IntField(fd, "Section2D") != 0;
+  model.material.density = Field(fd, "Density");
+  model.material.youngsModulus = Field(fd, "YoungsModulus");
+  model.material.poissonsRatio = Field(fd, "PoissonsRatio");
+  model.material.restitution = Field(fd, "Restitution");
+  model.material.friction = Field(fd, "Friction");
+  model.material.rollingFriction = Field(fd, "RollingFriction");
+  model.clock.time = Field(fd, "Time");
+  model.clock.step = IntField(fd, "Step");
+  model.nextId = IntField(fd, "NextId");
+  auto* rng = vtkTypeUInt64Array::SafeDownCast(RequireArray(fd, "RandomState", 4, 1));
+  if (!rng)
+  {
+    Missing("64-bit unsigned array 'RandomState'");
+  }
+  std::array<std::uint64_t, 4> state{};
+  for (int k = 0; k < 4; ++k)
+  {
+    state[k] = rng->GetValue(k);
+  }
+  model.random.setState(state);
+
+  model.solver.contactLaw = static_cast<dem::ContactLaw>(IntField(fd, "ContactLaw"));
+  model.solver.timestepSafety = Field(fd, "TimestepSafety");
+  model.solver.requestedTimestep = Field(fd, "RequestedTimestep");
+  model.solver.settlingDamping = Field(fd, "SettlingDamping");
+  model.solver.skin = Field(fd, "VerletSkin");
+  model.solver.threads = static_cast<int>(IntField(fd, "Threads"));
+  model.solver.parallelThreshold = IntField(fd, "ParallelThreshold");
+  model.clock.timestep = Field(fd, "Timestep");
+  vtkDataArray* wallState = fd->GetArray("WallState");
+  if (!wallState || wallState->GetNumberOfComponents() != WallStateComponents ||
+    (wallState->GetNumberOfTuples() != 0 && wallState->GetNumberOfTuples() != 6))
+  {
+    Missing("array 'WallState' (6 walls x 8 values)");
+  }
+  for (vtkIdType w = 0; w < wallState->GetNumberOfTuples(); ++w)
+  {
+    double v[WallStateComponents];
+    wallState->GetTuple(w, v);
+    dem::Wall wall;
+    wall.axis = static_cast<int>(v[0]);
+    wall.side = static_cast<int>(v[1]);
+    wall.position = v[2];
+    wall.velocity = v[3];
+    wall.active = v[4] != 0.0;
+    wall.force = dem::Vec3(v[5], v[6], v[7]);
+    model.walls.push_back(wall);
+  }
+  ContactsFromPolyData(input, model);
+
+  const vtkIdType n = particles->GetNumberOfPoints();
+  dem::Particles& p = model.particles;
+  p.position.resize(static_cast<std::size_t>(n));
+  if (n > 0)
+  {
+    auto* pts = vtkDoubleArray::SafeDownCast(particles->GetPoints()->GetData());
+    if (!pts)
+    {
+      Missing("double-precision particle positions");
+    }
+    std::memcpy(p.position.data(), pts->GetPointer(0), static_cast<std::size_t>(n) * sizeof(dem::Vec3));
+  }
+  vtkPointData* pd = particles->GetPointData();
+  auto* ids = vtkTypeInt64Array::SafeDownCast(RequireArray(pd, "Id", n, 1));
+  auto* flags = vtkTypeUInt32Array::SafeDownCast(RequireArray(pd, "Flags", n, 1));
+  if (!ids || !flags)
+  {
+    Missing("integer arrays 'Id' and 'Flags'");
+  }
+  p.id.assign(ids->GetPointer(0), ids->GetPointer(0) + n);
+  p.flags.assign(flags->GetPointer(0), flags->GetPointer(0) + n);
+  ReadScalars(pd, "Radius", n, p.radius);
+  ReadVectors(pd, "Velocity", n, p.velocity);
+  ReadVectors(pd, "AngularVelocity", n, p.angularVelocity);
+  ReadVectors(pd, "Displacement", n, p.displacement);
+  ReadVectors(pd, "Force", n, p.force);
+  ReadVectors(pd, "Torque", n, p.torque);
+  ReadScalars(pd, "Mass", n, p.mass);
+  ReadScalars(pd, "Inertia", n, p.inertia);
+  return model;
+}
+} // namespace rockdem

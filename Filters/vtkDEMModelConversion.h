@@ -1,0 +1,60 @@
+/**
+ * @file vtkDEMModelConversion.h
+ * @brief The one place where a dem::Model becomes VTK data and back (not wrapped).
+ *
+ * A model travels between RockDEM filters as a vtkMultiBlockDataSet:
+ * - block "Particles": vtkPolyData, one vertex per particle, double-precision points
+ *   (m) and point arrays Id, Radius (m), Velocity (m/s), AngularVelocity (rad/s),
+ *   Displacement (m), Force (N), Mass (kg), Inertia (kg m^2), Flags, Fixed, SizeClass.
+ * - block "Walls": vtkPolyData, the active walls as quads with cell arrays Axis, Side,
+ *   Position (m), Velocity (m/s), Force (N) and Stress (Pa, normal force over face area).
+ * - block "Contacts": vtkPolyData without points whose field data holds the contact
+ *   history needed to resume exactly (IdA, IdB, ShearSpring (m), RollingSpring (N m)).
+ * - field data of the multiblock: the model-level state (domain, material, gravity,
+ *   clock, random state, next id), see Documentation/DataModel.md.
+ * The round trip Model -> VTK -> Model is lossless: every stored quantity is written in
+ * double or exact integer form and read back unchanged.
+ */
+#ifndef vtkDEMModelConversion_h
+#define vtkDEMModelConversion_h
+
+#include "dem/Model.h"
+
+#include <string>
+
+class vtkMultiBlockDataSet;
+class vtkPolyData;
+
+namespace rockdem
+{
+/// Names of the blocks.
+constexpr const char* ParticlesBlockName = "Particles";
+constexpr const char* WallsBlockName = "Walls";
+constexpr const char* ContactsBlockName = "Contacts";
+/// Values per wall in the field-data array WallState: axis, side, position (m),
+/// velocity (m/s), active, reaction force x, y, z (N).
+constexpr int WallStateComponents = 8;
+/// Version of the in-memory VTK layout (field data "RockDEMModelVersion").
+constexpr int ModelLayoutVersion = 1;
+
+/// Writes the model into `output` (which is cleared first).
+void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output);
+
+/// Reads a model written by ModelToMultiBlock. Throws dem::InputError when `input` is
+/// not a RockDEM model (missing block or array, inconsistent sizes).
+dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input);
+
+/// The particles as polydata (points, vertices, point arrays), as in the Particles block.
+void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output);
+
+/// The active walls as quads (for display), as in the Walls block.
+void WallsToPolyData(const dem::Model& model, vtkPolyData* output);
+
+/// The contact history as field data of an empty polydata, as in the Contacts block.
+void ContactsToPolyData(const dem::Model& model, vtkPolyData* output);
+
+/// The twelve edges of the model box as line cells (the domain outline).
+void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output);
+}
+
+#endif

@@ -1,0 +1,168 @@
+#include "vtkDEMPackSource.h"
+
+#include "dem/Errors.h"
+#include "dem/Model.h"
+#include "dem/Pack.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+
+#include <cstring>
+#include <vector>
+
+vtkStandardNewMacro(vtkDEMPackSource);
+
+namespace
+{
+/// Everything that shapes the pack (not the material): a change rebuilds it.
+std::vector<double> PackSignature(const dem::PackParameters& p, const dem::Domain& d)
+{
+  const dem::FineZone& f = p.fineZone;
+  return { static_cast<double>(p.initialElements), p.minimumSize, p.maximumSize,
+    p.targetPorosity, static_cast<double>(p.randomSeed), f.enabled ? 1.0 : 0.0, f.origin.x(),
+    f.origin.y(), f.origin.z(), f.size.x(), f.size.y(), f.size.z(), f.minimumSize, f.maximumSize,
+    d.origin.x(), d.origin.y(), d.origin.z(), d.size.x(), d.size.y(), d.size.z(),
+    d.periodic[0] ? 1.0 : 0.0, d.periodic[1] ? 1.0 : 0.0, d.periodic[2] ? 1.0 : 0.0,
+    d.section2D ? 1.0 : 0.0 };
+}
+}
+
+struct vtkDEMPackSource::vtkInternals
+{
+  bool Valid = false;
+  dem::Model Model;
+  std::vector<double> Signature;
+  std::string AppliedCommands;
+};
+
+vtkDEMPackSource::vtkDEMPackSource()
+  : InitialElements(2000)
+  , MinimumSize(0.002)
+  , MaximumSize(0.004)
+  , TargetPorosity(0.4)
+  , RandomSeed(1)
+  , FineZone(0)
+  , FineZoneMinimumSize(0.001)
+  , FineZoneMaximumSize(0.002)
+  , Internals(new vtkInternals)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    this->FineZoneOrigin[k] = 0.0;
+    this->FineZoneDimensions[k] = 0.0;
+  }
+}
+
+vtkDEMPackSource::~vtkDEMPackSource()
+{
+  delete this->Internals;
+}
+
+void vtkDEMPackSource::AddElements()
+{
+  this->Commands.push_back('A');
+  this->Modified();
+}
+
+void vtkDEMPackSource::GrowElements()
+{
+  this->Commands.push_back('G');
+  this->Modified();
+}
+
+void vtkDEMPackSource::ResetPack()
+{
+  this->Commands.clear();
+  this->Internals->Valid = false;
+  this->Modified();
+}
+
+int vtkDEMPackSource::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInternals& cache = *this->Internals;
+  try
+  {
+    double origin[3];
+    double size[3];
+    this->ResolveBox(inputVector, origin, size);
+
+    dem::Model configured;
+    this->ConfigureModel(configured, origin, size);
+
+    dem::PackParameters params;
+    params.initialElements = this->InitialElements;
+    params.minimumSize = this->MinimumSize;
+    params.maximumSize = this->MaximumSize;
+    params.targetPorosity = this->TargetPorosity;
+    params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
+    params.fineZone.enabled = this->FineZone != 0;
+    params.fineZone.origin =
+      dem::Vec3(this->FineZoneOrigin[0], this->FineZoneOrigin[1], this->FineZoneOrigin[2]);
+    params.fineZone.size = dem::Vec3(
+      this->FineZoneDimensions[0], this->FineZoneDimensions[1], this->FineZoneDimensions[2]);
+    params.fineZone.minimumSize = this->FineZoneMinimumSize;
+    params.fineZone.maximumSize = this->FineZoneMaximumSize;
+    dem::validate(params, configured.domain);
+
+    const std::vector<double> signature = PackSignature(params, configured.domain);
+    const bool reusable = cache.Valid && cache.Signature == signature &&
+      this->Commands.compare(0, cache.AppliedCommands.size(), cache.AppliedCommands) == 0;
+    if (!reusable)
+    {
+      cache.Valid = false;
+      cache.Model = std::move(configured);
+      const dem::PackReport built = dem::buildPack(cache.Model, params);
+      this->ReportInfo("built pack: " + built.summary());
+      cache.AppliedCommands.clear();
+      cache.Signature = signature;
+    }
+    else
+    {
+      // Only the material may differ: update it (and the masses that follow from it).
+      cache.Model.material = configured.material;
+      dem::updateMassProperties(cache.Model);
+    }
+    for (std::size_t c = cache.AppliedCommands.size(); c < this->Commands.size(); ++c)
+    {
+      this->UpdateProgress(static_cast<double>(c) / static_cast<double>(this->Commands.size()));
+      if (this->Commands[c] == 'A')
+      {
+        this->ReportInfo(dem::addElements(cache.Model, params).summary());
+      }
+      else
+      {
+        this->ReportInfo(dem::growElements(cache.Model).summary());
+      }
+      cache.AppliedCommands.push_back(this->Commands[c]);
+    }
+    cache.Valid = true;
+    this->PublishModel(cache.Model, outputVector);
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    cache.Valid = false;
+    this->ReportFailure(e.what(), outputVector);
+    return 0;
+  }
+}
+
+void vtkDEMPackSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "InitialElements: " << this->InitialElements << "\n";
+  os << indent << "MinimumSize: " << this->MinimumSize << " m\n";
+  os << indent << "MaximumSize: " << this->MaximumSize << " m\n";
+  os << indent << "TargetPorosity: " << this->TargetPorosity << "\n";
+  os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "FineZone: " << this->FineZone << "\n";
+  os << indent << "FineZoneOrigin: " << this->FineZoneOrigin[0] << " " << this->FineZoneOrigin[1]
+     << " " << this->FineZoneOrigin[2] << " m\n";
+  os << indent << "FineZoneDimensions: " << this->FineZoneDimensions[0] << " "
+     << this->FineZoneDimensions[1] << " " << this->FineZoneDimensions[2] << " m\n";
+  os << indent << "FineZoneMinimumSize: " << this->FineZoneMinimumSize << " m\n";
+  os << indent << "FineZoneMaximumSize: " << this->FineZoneMaximumSize << " m\n";
+  os << indent << "Commands: " << this->Commands << "\n";
+}

@@ -1,0 +1,110 @@
+/**
+ * @class   vtkDEMPackSource
+ * @brief   Builds a random, non-overlapping particle pack in the model box.
+ *
+ * The reference guide's "Creating a DE volume", "Putting the model where the rock is"
+ * and "Building the particle pack". Places Initial Elements particles with radii drawn
+ * uniformly between Minimum Size and Maximum Size (m), rejecting overlaps; an optional
+ * fine zone (a box inside the model) draws radii from a finer range. The commands
+ * AddElements (insert until Target Porosity or saturation) and GrowElements (expand
+ * each particle into the gap to its nearest neighbour or wall) densify the pack;
+ * ResetPack discards the commands and rebuilds from scratch.
+ *
+ * The output is a pure function of the parameters and of the sequence of commands
+ * pressed since the last reset: a parameter change rebuilds the pack from its seed and
+ * replays the commands, so the same inputs always give the same pack.
+ */
+#ifndef vtkDEMPackSource_h
+#define vtkDEMPackSource_h
+
+#include "RockDEMFiltersModule.h" // for export macro
+#include "vtkDEMModelSourceBase.h"
+
+class ROCKDEMFILTERS_EXPORT vtkDEMPackSource : public vtkDEMModelSourceBase
+{
+public:
+  static vtkDEMPackSource* New();
+  vtkTypeMacro(vtkDEMPackSource, vtkDEMModelSourceBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Number of particles placed when the pack is built or reset.
+  vtkSetMacro(InitialElements, int);
+  vtkGetMacro(InitialElements, int);
+  ///@}
+
+  ///@{
+  /// Particle radius range, m. Radii are uniform between the two.
+  vtkSetMacro(MinimumSize, double);
+  vtkGetMacro(MinimumSize, double);
+  vtkSetMacro(MaximumSize, double);
+  vtkGetMacro(MaximumSize, double);
+  ///@}
+
+  ///@{
+  /// Void fraction Add Elements aims for, in (0, 1).
+  vtkSetMacro(TargetPorosity, double);
+  vtkGetMacro(TargetPorosity, double);
+  ///@}
+
+  ///@{
+  /// Seed of the placement random stream.
+  vtkSetMacro(RandomSeed, int);
+  vtkGetMacro(RandomSeed, int);
+  ///@}
+
+  ///@{
+  /// Optional fine zone: a box (origin and dimensions in m) inside the model where
+  /// radii are drawn between Fine Zone Minimum Size and Fine Zone Maximum Size (m).
+  vtkSetMacro(FineZone, vtkTypeBool);
+  vtkGetMacro(FineZone, vtkTypeBool);
+  vtkBooleanMacro(FineZone, vtkTypeBool);
+  vtkSetVector3Macro(FineZoneOrigin, double);
+  vtkGetVector3Macro(FineZoneOrigin, double);
+  vtkSetVector3Macro(FineZoneDimensions, double);
+  vtkGetVector3Macro(FineZoneDimensions, double);
+  vtkSetMacro(FineZoneMinimumSize, double);
+  vtkGetMacro(FineZoneMinimumSize, double);
+  vtkSetMacro(FineZoneMaximumSize, double);
+  vtkGetMacro(FineZoneMaximumSize, double);
+  ///@}
+
+  /// Command: insert particles until Target Porosity is reached or placement saturates.
+  void AddElements();
+  /// Command: expand each particle into the gap to its nearest neighbour or wall.
+  void GrowElements();
+  /// Command: forget Add/Grow commands and rebuild the pack from Initial Elements.
+  void ResetPack();
+
+  /// Number of Add/Grow commands applied since the last reset.
+  int GetNumberOfCommands() const { return static_cast<int>(this->Commands.size()); }
+
+protected:
+  vtkDEMPackSource();
+  ~vtkDEMPackSource() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int InitialElements;
+  double MinimumSize;
+  double MaximumSize;
+  double TargetPorosity;
+  int RandomSeed;
+  vtkTypeBool FineZone;
+  double FineZoneOrigin[3];
+  double FineZoneDimensions[3];
+  double FineZoneMinimumSize;
+  double FineZoneMaximumSize;
+
+  /// Commands pressed since the last reset: 'A' (add) or 'G' (grow).
+  std::string Commands;
+
+private:
+  vtkDEMPackSource(const vtkDEMPackSource&) = delete;
+  void operator=(const vtkDEMPackSource&) = delete;
+
+  struct vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

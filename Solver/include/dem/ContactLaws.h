@@ -1,0 +1,93 @@
+// RockDEM engine: contact force laws (PHYSICS.md section 1).
+//
+// One function per force law, named as in the references. SI units: m, kg, s, N, Pa.
+// Sign conventions: overlap delta > 0 while in contact; approach speed (d delta / dt)
+// is positive while the surfaces approach. Normal forces are magnitudes along the
+// contact normal, repulsive, never negative (no-tension cut-off: the contact ends
+// when the force reaches zero, with no attraction).
+#pragma once
+
+#include "dem/ContactLawKind.h"
+#include "dem/Model.h"
+
+namespace dem {
+
+/// Effective properties of one contact (PHYSICS.md section 1). A rigid wall has
+/// infinite mass and radius: then E* = E/(1-nu^2), R* = R, m* = m.
+struct PairProperties {
+  double effectiveModulus = 0.0;       ///< E*, Pa
+  double effectiveShearModulus = 0.0;  ///< G* (Mindlin), Pa
+  double effectiveRadius = 0.0;        ///< R*, m
+  double effectiveMass = 0.0;          ///< m*, kg
+  double linearNormalStiffness = 0.0;  ///< kn of the linear law, N/m
+  double linearShearStiffness = 0.0;   ///< kt of the linear law, N/m
+};
+
+/// The calibrated contact model for one material: law, damping coefficient that
+/// delivers the requested restitution, friction and rolling resistance.
+struct ContactModel {
+  ContactLaw law = ContactLaw::HertzMindlin;
+  double restitution = 0.5;        ///< requested coefficient of restitution, [0, 1]
+  double dampingCoefficient = 0.0; ///< Hertz: c of Tsuji-type damping; linear: damping ratio zeta
+  double friction = 0.5;           ///< Coulomb coefficient mu
+  double rollingFriction = 0.0;    ///< rolling resistance coefficient mu_r
+  double youngsModulus = 1e9;      ///< Pa
+  double poissonsRatio = 0.25;     ///< -
+};
+
+/// Builds the contact model for a material: calibrates the damping coefficient so that
+/// a head-on collision with the no-tension cut-off delivers material.restitution.
+ContactModel makeContactModel(const Material& material, ContactLaw law);
+
+/// Effective properties of a particle-particle contact. `section2D`, `slab` (m): the
+/// linear law uses the disc-through-slab area 2 r t in 2D.
+PairProperties pairProperties(const ContactModel& model, double radiusA, double massA,
+                              double radiusB, double massB, bool section2D, double slab);
+/// Effective properties of a particle-wall contact (rigid, flat wall).
+PairProperties wallProperties(const ContactModel& model, double radius, double mass,
+                              bool section2D, double slab);
+
+/// Hertz elastic normal force, N: F = 4/3 E* sqrt(R*) delta^(3/2).
+double hertzElasticForce(double effectiveModulus, double effectiveRadius, double overlap);
+
+/// Total normal force of the contact law, N (>= 0): elastic part plus viscous damping
+/// (Hertz: c sqrt(m* K) delta^(1/4) d(delta)/dt with K = 4/3 E* sqrt(R*); linear:
+/// 2 zeta sqrt(m* kn) d(delta)/dt), cut off at zero.
+double normalForce(const ContactModel& model, const PairProperties& pair, double overlap,
+                   double approachSpeed);
+
+/// Current normal contact stiffness dF/d(delta), N/m (Hertz: 2 E* sqrt(R* delta)).
+double normalStiffness(const ContactModel& model, const PairProperties& pair, double overlap);
+/// Current tangential stiffness, N/m (Mindlin: 8 G* sqrt(R* delta); linear: kt).
+double tangentialStiffness(const ContactModel& model, const PairProperties& pair, double overlap);
+
+/// Incremental tangential spring (Mindlin / Coulomb). `spring` (m) is the stored
+/// tangential displacement: it is first rotated into the current contact plane (normal
+/// `n`, unit), then incremented by the tangential relative displacement of the contact
+/// point `slipIncrement` (m, already in the plane), and capped so that the force
+/// magnitude does not exceed mu Fn (gross sliding). Returns the tangential force on
+/// particle A, N: Ft = -kt * spring.
+Vec3 tangentialForce(const ContactModel& model, const PairProperties& pair, double overlap,
+                     double normalForceMagnitude, const Vec3& n, const Vec3& slipIncrement,
+                     Vec3& spring);
+
+/// Elastic-plastic rolling resistance (Ai, Chen, Rotter & Ooi 2011, model A): rolling
+/// spring kr = 2.25 kn mu_r^2 R*^2 on the relative rolling rotation `rollIncrement`
+/// (rad, perpendicular to n), torque capped at mu_r R* Fn. `spring` (N m) is the stored
+/// rolling torque, rotated into the current plane first. Returns the torque on A, N m.
+Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double overlap,
+                   double normalForceMagnitude, const Vec3& n, const Vec3& rollIncrement,
+                   Vec3& spring);
+
+/// Removes the component of `v` along the unit normal `n` (projection onto the plane).
+inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
+
+/// Restitution delivered by one head-on collision of the given law with damping
+/// coefficient `c` and the no-tension cut-off (dimensionless, speed independent for both
+/// laws). Integrates the collision in dimensionless form with a fine RK4 step.
+double restitutionForDamping(ContactLaw law, double c);
+/// Inverse of restitutionForDamping: the damping coefficient that delivers `e` (0..1].
+/// e = 0 has no finite coefficient; it is reported as an error by validation.
+double dampingForRestitution(ContactLaw law, double e);
+
+} // namespace dem

@@ -1,0 +1,101 @@
+// RockDEM engine: the time-stepping solver on the CPU.
+//
+// One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> Verlet
+// neighbour list update when any particle has moved half the skin -> pair forces (each
+// pair once) -> wall forces -> per-particle gather in a fixed order -> Cundall local
+// damping -> half kick. Velocity Verlet; velocity-dependent forces use the half-step
+// velocity. Serial below SolverSettings::parallelThreshold particles, OpenMP above; the
+// result never depends on the number of threads (no floating-point atomics, fixed
+// summation order). SI units throughout.
+#pragma once
+
+#include "dem/ContactLaws.h"
+#include "dem/Model.h"
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace dem {
+
+/// Raised when a run goes unstable (non-finite values, energy gained without a source,
+/// particles escaping the box). The model is left at its last good state.
+class InstabilityError : public std::runtime_error {
+public:
+  explicit InstabilityError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// Snapshot of the state of a run, for status lines and the history.
+struct Diagnostics {
+  double time = 0.0;                 ///< s
+  std::int64_t step = 0;
+  double kineticEnergy = 0.0;        ///< J, translational + rotational
+  double rmsDisplacement = 0.0;      ///< m, RMS of particle displacements since the pack was built
+  std::size_t contacts = 0;          ///< touching particle pairs and particle-wall contacts
+  double unbalancedForceRatio = 0.0; ///< mean |net force| / mean |contact force| (PHYSICS.md s.4)
+  std::size_t escaped = 0;           ///< particles outside the box on an axis with walls
+};
+
+/// Critical timestep (s) of a model for a contact law (PHYSICS.md section 2): Rayleigh
+/// for Hertz, mass-spring (translation and rotation, a particle with 12 contacts in 3D,
+/// 6 in 2D, at the linear stiffness) for the linear law. Depends on particles and
+/// material only, so a reloaded model gets the same value.
+double criticalTimestep(const Model& model, ContactLaw law);
+
+/// Validates the solver settings (InputError naming the parameter).
+void validate(const SolverSettings& settings);
+
+/// Puts the six box walls in the model (none on a periodic axis, no Z walls in 2D),
+/// at rest on the faces of the box.
+void resetWalls(Model& model);
+
+class Simulation {
+public:
+  /// Validates the model and settings, calibrates the contact damping, chooses the
+  /// timestep and builds the neighbour list. Walls are created if the model has none.
+  explicit Simulation(Model& model);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// Advances the model by `steps` physics steps. On instability the model is restored
+  /// to its state at the start of this call and InstabilityError is thrown; the
+  /// Simulation must then not be used again.
+  void advance(std::int64_t steps);
+
+  double criticalTimestep() const { return critical_; }
+  double timestep() const { return timestep_; }
+  /// Non-empty when a requested timestep was overridden (says both values).
+  const std::string& timestepMessage() const { return timestepMessage_; }
+  /// Which path runs: "CPU serial" or "CPU OpenMP (N threads)".
+  std::string path() const;
+  const ContactModel& contactModel() const { return contactModel_; }
+
+  Diagnostics diagnostics() const;
+  /// Total mechanical energy, J: kinetic + gravitational potential (relative to the
+  /// origin) + elastic energy stored in the normal and tangential contact springs.
+  double totalEnergy() const;
+
+  /// Writes the live contact history into model.contacts (done after every advance()).
+  void exportContacts();
+
+private:
+  void rebuildNeighbours(bool importModelHistory);
+  bool neighboursStale() const;
+  void computeForces(bool incrementHistory);
+  void step();
+  void checkStability(const char* when) const;
+  double availableEnergy() const;
+
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  Model& model_;
+  ContactModel contactModel_;
+  double critical_ = 0.0;
+  double timestep_ = 0.0;
+  std::string timestepMessage_;
+  double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
+};
+
+} // namespace dem

@@ -1,0 +1,861 @@
+#include "dem/Simulation.h"
+
+#include "dem/Errors.h"
+#include "dem/SizeClassGrids.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace dem {
+namespace {
+
+constexpr double Pi = 3.14159265358979323846;
+
+/// Sign of a velocity component for Cundall damping (0 at rest).
+double signOf(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+/// Cundall local damping of one degree of freedom (PHYSICS.md s.1):
+/// F - alpha |F| sign(v).
+double cundall(double force, double velocity, double alpha)
+{
+  return force - alpha * std::abs(force) * signOf(velocity);
+}
+
+int availableThreads()
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------
+// Timestep, settings, walls
+
+double criticalTimestep(const Model& model, ContactLaw law)
+{
+  const Particles& p = model.particles;
+  if (p.empty()) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const Material& m = model.material;
+  if (law == ContactLaw::HertzMindlin) {
+    // Rayleigh: dt_R = pi R_min sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2(1+nu)).
+    const double rmin = *std::min_element(p.radius.begin(), p.radius.end());
+    const double G = m.youngsModulus / (2.0 * (1.0 + m.poissonsRatio));
+    return Pi * rmin * std::sqrt(m.density / G) / (0.1631 * m.poissonsRatio + 0.8766);
+  }
+  // Linear springs: per particle sqrt(m / k) and sqrt(I / k_rot) with k summed over a
+  // full coordination (12 contacts in 3D, 6 in 2D) of the stiffest (wall) contact.
+  const ContactModel cm{ law, m.restitution, 0.0, m.friction, m.rollingFriction, m.youngsModulus,
+                         m.poissonsRatio };
+  const bool planar = model.domain.section2D;
+  const double coordination = planar ? 6.0 : 12.0;
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const PairProperties w =
+      wallProperties(cm, p.radius[i], p.mass[i], planar, model.domain.slabThickness());
+    const double kn = coordination * w.linearNormalStiffness;
+    const double kt = coordination * w.linearShearStiffness;
+    const double r = p.radius[i];
+    dt = std::min(dt, std::sqrt(p.mass[i] / kn));
+    dt = std::min(dt, std::sqrt(p.inertia[i] / (kt * r * r)));
+  }
+  return dt;
+}
+
+void validate(const SolverSettings& s)
+{
+  requireInRange("Timestep Safety", s.timestepSafety, 1e-6, 1.0);
+  requireNonNegative("Timestep", s.requestedTimestep, "s");
+  if (!(s.settlingDamping >= 0.0 && s.settlingDamping < 1.0)) {
+    throw InputError("Settling Damping = " + formatValue(s.settlingDamping) +
+                     " is out of range: valid range is [0, 1).");
+  }
+  requirePositive("Verlet Skin", s.skin);
+  if (s.threads < 0) {
+    throw InputError("Threads = " + std::to_string(s.threads) +
+                     " is out of range: valid range is 0 (all cores) or more.");
+  }
+}
+
+void resetWalls(Model& model)
+{
+  model.walls.clear();
+  const Domain& d = model.domain;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      Wall w;
+      w.axis = axis;
+      w.side = side;
+      w.position = side == 0 ? d.origin[axis] : d.origin[axis] + d.size[axis];
+      w.active = !d.periodic[axis] && !(d.section2D && axis == 2);
+      model.walls.push_back(w);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Internal state
+
+struct Simulation::Impl {
+  // Neighbour list: particle pairs (slots i < j) within reach, sorted by (i, j).
+  std::vector<std::uint32_t> pairI, pairJ;
+  std::vector<Vec3> pairSpring;      // m, tangential history
+  std::vector<Vec3> pairRolling;     // N m, rolling history (empty if rolling is off)
+  std::vector<Vec3> pairForce;       // N, force on i (j gets the opposite)
+  std::vector<Vec3> pairTorqueI;     // N m
+  std::vector<Vec3> pairTorqueJ;     // N m
+  std::vector<double> pairNormal;    // N, normal force magnitude (0 when not touching)
+  // Per-particle gather lists (CSR): entries of particle i in [start[i], start[i+1]);
+  // an entry is 2 * pair + (1 if the particle is j of the pair).
+  std::vector<std::size_t> adjacencyStart;
+  std::vector<std::size_t> adjacency;
+  // Wall contacts: dense, particle-major (slot * 6 + wall).
+  std::vector<Vec3> wallSpring;
+  std::vector<Vec3> wallRolling;
+  std::vector<Vec3> wallForce;       // N, force of wall w on particle i
+  std::vector<Vec3> wallTorque;      // N m
+  std::vector<double> wallNormal;    // N
+  // Positions at the last neighbour build (for the skin criterion).
+  std::vector<Vec3> positionAtBuild;
+  double skinDistance = 0.0;         // m
+  std::vector<double> inverseMass;   // 1/kg (0 for fixed particles)
+  std::vector<double> inverseInertia;
+  std::vector<double> contactForceMagnitude; // N, sum of |contact forces| per particle (diagnostics)
+  std::vector<double> unbalancedForce;       // N, |net force| per particle before damping
+  int threads = 1;
+  bool parallel = false;
+  bool broken = false;
+};
+
+namespace {
+/// Minimum-image separation b - a (m); z = 0 in a 2D section.
+Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
+{
+  Vec3 s = b - a;
+  for (int k = 0; k < 3; ++k) {
+    if (d.periodic[k]) {
+      s[k] -= d.size[k] * std::nearbyint(s[k] / d.size[k]);
+    }
+  }
+  if (d.section2D) {
+    s.z() = 0.0;
+  }
+  return s;
+}
+} // namespace
+
+Simulation::Simulation(Model& model)
+  : impl_(new Impl)
+  , model_(model)
+{
+  validate(model.domain);
+  validate(model.material);
+  validate(model.solver);
+  const SolverSettings& s = model.solver;
+  contactModel_ = makeContactModel(model.material, s.contactLaw);
+  if (model.walls.size() != 6) {
+    resetWalls(model);
+  }
+
+  critical_ = dem::criticalTimestep(model, s.contactLaw);
+  const double safe = s.timestepSafety * critical_;
+  if (s.requestedTimestep > 0.0 && s.requestedTimestep > safe && !s.allowUnsafeTimestep) {
+    std::ostringstream msg;
+    msg << "Timestep = " << formatValue(s.requestedTimestep) << " s is above the safe value "
+        << formatValue(safe) << " s (Timestep Safety " << formatValue(s.timestepSafety)
+        << " x critical " << formatValue(critical_) << " s): using " << formatValue(safe) << " s.";
+    timestepMessage_ = msg.str();
+    timestep_ = safe;
+  } else if (s.requestedTimestep > 0.0) {
+    timestep_ = s.requestedTimestep;
+  } else {
+    timestep_ = safe;
+  }
+  if (!std::isfinite(timestep_)) {
+    timestep_ = 0.0; // no particles: nothing to step
+  }
+  model.clock.timestep = timestep_;
+
+  Impl& im = *impl_;
+  const Particles& p = model.particles;
+  const std::size_t n = p.size();
+  im.inverseMass.resize(n);
+  im.inverseInertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool fixed = (p.flags[i] & FlagFixed) != 0;
+    im.inverseMass[i] = fixed ? 0.0 : 1.0 / p.mass[i];
+    im.inverseInertia[i] = fixed ? 0.0 : 1.0 / p.inertia[i];
+  }
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+  im.wallSpring.assign(6 * n, Vec3::Zero());
+  im.wallRolling.assign(rolling ? 6 * n : 0, Vec3::Zero());
+  im.wallForce.assign(6 * n, Vec3::Zero());
+  im.wallTorque.assign(6 * n, Vec3::Zero());
+  im.wallNormal.assign(6 * n, 0.0);
+  im.contactForceMagnitude.assign(n, 0.0);
+  im.unbalancedForce.assign(n, 0.0);
+  const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
+  im.skinDistance = s.skin * rmin;
+  im.threads = s.threads > 0 ? s.threads : availableThreads();
+  im.parallel = static_cast<std::int64_t>(n) >= s.parallelThreshold && im.threads > 1;
+  if (!im.parallel) {
+    im.threads = 1;
+  }
+
+  // Import the stored contact history (by global ids) into the neighbour list.
+  rebuildNeighbours(true);
+  if (model.clock.step == 0) {
+    // A model that has never stepped has no forces yet: compute them (no history
+    // increment) so that the first half kick sees gravity and the initial contacts.
+    computeForces(false);
+  } else {
+    // Resumed: the stored forces are those of the last step; only the diagnostics
+    // arrays need the contact state, which the next step recomputes.
+  }
+  initialAvailableEnergy_ = availableEnergy();
+}
+
+Simulation::~Simulation() = default;
+
+std::string Simulation::path() const
+{
+  return impl_->parallel ? "CPU OpenMP (" + std::to_string(impl_->threads) + " threads)"
+                         : std::string("CPU serial");
+}
+
+// ---------------------------------------------------------------------------------------
+// Neighbour list
+
+void Simulation::rebuildNeighbours(bool importModelHistory)
+{
+  Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const std::size_t n = p.size();
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+
+  // Keep the old list's history to carry it over (both lists are sorted by (i, j)).
+  std::vector<std::uint32_t> oldI, oldJ;
+  std::vector<Vec3> oldSpring, oldRolling;
+  oldI.swap(im.pairI);
+  oldJ.swap(im.pairJ);
+  oldSpring.swap(im.pairSpring);
+  oldRolling.swap(im.pairRolling);
+
+  if (n > 0) {
+    const auto [rmin, rmax] = std::minmax_element(p.radius.begin(), p.radius.end());
+    SizeClassGrids grids(d, *rmin, *rmax);
+    grids.insertAll(p);
+    std::vector<std::size_t> keys;
+    for (std::size_t i = 0; i < n; ++i) {
+      grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
+      std::sort(keys.begin(), keys.end());
+      for (std::size_t j : keys) {
+        if (j > i) {
+          im.pairI.push_back(static_cast<std::uint32_t>(i));
+          im.pairJ.push_back(static_cast<std::uint32_t>(j));
+        }
+      }
+    }
+  }
+  const std::size_t pairs = im.pairI.size();
+  im.pairSpring.assign(pairs, Vec3::Zero());
+  im.pairRolling.assign(rolling ? pairs : 0, Vec3::Zero());
+  im.pairForce.assign(pairs, Vec3::Zero());
+  im.pairTorqueI.assign(pairs, Vec3::Zero());
+  im.pairTorqueJ.assign(pairs, Vec3::Zero());
+  im.pairNormal.assign(pairs, 0.0);
+
+  if (importModelHistory) {
+    // Stored history is keyed by global ids: map ids to slots, then find each pair.
+    std::vector<std::pair<std::int64_t, std::uint32_t>> slotOf(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      slotOf[i] = { p.id[i], static_cast<std::uint32_t>(i) };
+    }
+    std::sort(slotOf.begin(), slotOf.end());
+    auto findSlot = [&](std::int64_t id) -> long {
+      auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::uint32_t(0)));
+      return (it != slotOf.end() && it->first == id) ? static_cast<long>(it->second) : -1;
+    };
+    const ContactHistory& h = model_.contacts;
+    for (std::size_t c = 0; c < h.size(); ++c) {
+      const long a = findSlot(h.idA[c]);
+      if (a < 0) {
+        continue;
+      }
+      if (h.idB[c] < 0) {
+        const std::size_t w = static_cast<std::size_t>(-h.idB[c] - 1);
+        if (w < 6) {
+          im.wallSpring[a * 6 + w] = h.shearSpring[c];
+          if (rolling && c < h.rollingSpring.size()) {
+            im.wallRolling[a * 6 + w] = h.rollingSpring[c];
+          }
+        }
+        continue;
+      }
+      const long b = findSlot(h.idB[c]);
+      if (b < 0) {
+        continue;
+      }
+      // The stored spring is A's displacement relative to B; the list orders by slot.
+      const std::uint32_t i = static_cast<std::uint32_t>(std::min(a, b));
+      const std::uint32_t j = static_cast<std::uint32_t>(std::max(a, b));
+      const double orientation = (a == static_cast<long>(i)) ? 1.0 : -1.0;
+      std::size_t lo = std::lower_bound(im.pairI.begin(), im.pairI.end(), i) - im.pairI.begin();
+      for (std::size_t k = lo; k < pairs && im.pairI[k] == i; ++k) {
+        if (im.pairJ[k] == j) {
+          im.pairSpring[k] = orientation * h.shearSpring[c];
+          if (rolling && c < h.rollingSpring.size()) {
+            im.pairRolling[k] = orientation * h.rollingSpring[c];
+          }
+          break;
+        }
+      }
+    }
+  } else {
+    // Merge-join with the previous list to carry the history over.
+    std::size_t k = 0;
+    for (std::size_t o = 0; o < oldI.size(); ++o) {
+      while (k < pairs && (im.pairI[k] < oldI[o] || (im.pairI[k] == oldI[o] && im.pairJ[k] < oldJ[o]))) {
+        ++k;
+      }
+      if (k < pairs && im.pairI[k] == oldI[o] && im.pairJ[k] == oldJ[o]) {
+        im.pairSpring[k] = oldSpring[o];
+        if (rolling) {
+          im.pairRolling[k] = oldRolling[o];
+        }
+      }
+    }
+  }
+
+  // Gather lists: each particle's pairs in order of partner slot (a fixed order).
+  im.adjacencyStart.assign(n + 1, 0);
+  for (std::size_t k = 0; k < pairs; ++k) {
+    ++im.adjacencyStart[im.pairI[k] + 1];
+    ++im.adjacencyStart[im.pairJ[k] + 1];
+  }
+  std::partial_sum(im.adjacencyStart.begin(), im.adjacencyStart.end(), im.adjacencyStart.begin());
+  im.adjacency.assign(2 * pairs, 0);
+  std::vector<std::size_t> fill(im.adjacencyStart.begin(), im.adjacencyStart.end() - 1);
+  // Pairs are sorted by (i, j): visiting them in order appends, for each particle, the
+  // partners below it (as j) in increasing i, then the partners above it (as i) in
+  // increasing j. Both runs are sorted, and the first precedes the second.
+  for (std::size_t k = 0; k < pairs; ++k) {
+    im.adjacency[fill[im.pairJ[k]]++] = 2 * k + 1;
+  }
+  for (std::size_t k = 0; k < pairs; ++k) {
+    im.adjacency[fill[im.pairI[k]]++] = 2 * k;
+  }
+  im.positionAtBuild = p.position;
+}
+
+bool Simulation::neighboursStale() const
+{
+  const Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const double limit = 0.5 * im.skinDistance;
+  const double limit2 = limit * limit;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (separation(model_.domain, im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// Forces
+
+void Simulation::computeForces(bool incrementHistory)
+{
+  Impl& im = *impl_;
+  Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const ContactModel& cm = contactModel_;
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  const double dt = incrementHistory ? timestep_ : 0.0;
+  const double predict = 0.5 * dt; // s, half kick from the half-step to the full-step velocity
+  const bool rolling = cm.rollingFriction > 0.0;
+  const std::size_t n = p.size();
+  const long pairs = static_cast<long>(im.pairI.size());
+  const double infinite = std::numeric_limits<double>::infinity();
+  auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
+
+  // 1. Each pair once.
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairs; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    const Vec3 branch = separation(d, p.position[i], p.position[j]); // from i to j
+    const double distance = branch.norm();
+    const double overlap = p.radius[i] + p.radius[j] - distance;
+    if (overlap <= 0.0 || distance == 0.0) {
+      im.pairForce[k].setZero();
+      im.pairTorqueI[k].setZero();
+      im.pairTorqueJ[k].setZero();
+      im.pairNormal[k] = 0.0;
+      im.pairSpring[k].setZero();
+      if (rolling) {
+        im.pairRolling[k].setZero();
+      }
+      continue;
+    }
+    const Vec3 normal = branch / distance;
+    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
+    const double armJ = p.radius[j] - 0.5 * overlap;
+    // Slip over the step uses the half-step velocities (exact for the displacement
+    // increment); the viscous damping uses the full-step velocities, predicted from the
+    // last forces, so that restitution does not drift with the number of steps per impact.
+    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+    const Vec3 predictedVelocity = relativeVelocity +
+      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
+    const double approachSpeed = predictedVelocity.dot(normal);
+    const PairProperties pair =
+      pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
+    const double fn = normalForce(cm, pair, overlap, approachSpeed);
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft = tangentialForce(cm, pair, overlap, fn, normal, slip, im.pairSpring[k]);
+    Vec3 torqueI = armI * normal.cross(ft);
+    Vec3 torqueJ = armJ * normal.cross(ft);
+    if (rolling) {
+      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
+      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
+      torqueI += mr;
+      torqueJ -= mr;
+    }
+    im.pairForce[k] = -fn * normal + ft;
+    im.pairTorqueI[k] = torqueI;
+    im.pairTorqueJ[k] = torqueJ;
+    im.pairNormal[k] = fn;
+  }
+
+  // 2. Walls, per particle.
+  const long count = static_cast<long>(n);
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long i = 0; i < count; ++i) {
+    for (int w = 0; w < 6; ++w) {
+      const std::size_t slot = static_cast<std::size_t>(i) * 6 + w;
+      const Wall& wall = model_.walls[w];
+      const double side = wall.side == 0 ? 1.0 : -1.0;
+      const double distance = (p.position[i][wall.axis] - wall.position) * side;
+      const double overlap = wall.active ? p.radius[i] - distance : 0.0;
+      if (overlap <= 0.0) {
+        im.wallForce[slot].setZero();
+        im.wallTorque[slot].setZero();
+        im.wallNormal[slot] = 0.0;
+        im.wallSpring[slot].setZero();
+        if (rolling) {
+          im.wallRolling[slot].setZero();
+        }
+        continue;
+      }
+      const Vec3 normal = -wall.normal(); // from the centre towards the wall
+      const double arm = p.radius[i] - overlap;
+      Vec3 wallVelocity = Vec3::Zero();
+      wallVelocity[wall.axis] = wall.velocity;
+      const Vec3 relativeVelocity =
+        p.velocity[i] - wallVelocity + p.angularVelocity[i].cross(arm * normal);
+      const double approachSpeed =
+        (relativeVelocity + predict * im.inverseMass[i] * p.force[i]).dot(normal);
+      const PairProperties pair = wallProperties(cm, p.radius[i], massOf(i), planar, slab);
+      const double fn = normalForce(cm, pair, overlap, approachSpeed);
+      const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+      const Vec3 ft = tangentialForce(cm, pair, overlap, fn, normal, slip, im.wallSpring[slot]);
+      Vec3 torque = arm * normal.cross(ft);
+      if (rolling) {
+        const Vec3 roll = inPlane(p.angularVelocity[i], normal) * dt;
+        torque += rollingTorque(cm, pair, overlap, fn, normal, roll, im.wallRolling[slot]);
+      }
+      im.wallForce[slot] = -fn * normal + ft;
+      im.wallTorque[slot] = torque;
+      im.wallNormal[slot] = fn;
+    }
+  }
+
+  // 3. Gather per particle in a fixed order; Cundall damping on the unbalanced force.
+  const double alpha = model_.solver.settlingDamping;
+  const Vec3 gravity = model_.gravity;
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    Vec3 force = p.mass[i] * gravity;
+    Vec3 torque = Vec3::Zero();
+    double contactMagnitude = 0.0;
+    for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
+      const std::size_t k = im.adjacency[e] >> 1;
+      if (im.adjacency[e] & 1u) {
+        force -= im.pairForce[k];
+        torque += im.pairTorqueJ[k];
+      } else {
+        force += im.pairForce[k];
+        torque += im.pairTorqueI[k];
+      }
+      contactMagnitude += im.pairForce[k].norm();
+    }
+    for (int w = 0; w < 6; ++w) {
+      force += im.wallForce[i * 6 + w];
+      torque += im.wallTorque[i * 6 + w];
+      contactMagnitude += im.wallForce[i * 6 + w].norm();
+    }
+    if (planar) {
+      force.z() = 0.0;
+      torque.x() = 0.0;
+      torque.y() = 0.0;
+    }
+    im.contactForceMagnitude[i] = contactMagnitude;
+    Vec3 damped = force;
+    Vec3 dampedTorque = torque;
+    if (alpha > 0.0) {
+      for (int c = 0; c < 3; ++c) {
+        damped[c] = cundall(force[c], p.velocity[i][c], alpha);
+        dampedTorque[c] = cundall(torque[c], p.angularVelocity[i][c], alpha);
+      }
+    }
+    p.force[i] = damped;
+    p.torque[i] = dampedTorque;
+    im.unbalancedForce[i] = force.norm();
+  }
+
+  // 4. Wall reactions: serial sum in slot order (deterministic).
+  for (int w = 0; w < 6; ++w) {
+    Vec3 reaction = Vec3::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      reaction -= im.wallForce[i * 6 + w];
+    }
+    model_.walls[w].force = reaction;
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Stepping
+
+void Simulation::step()
+{
+  Impl& im = *impl_;
+  Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const double dt = timestep_;
+  const double half = 0.5 * dt;
+  const bool planar = d.section2D;
+  const long count = static_cast<long>(p.size());
+
+  // Half kick with the forces of the last step, then drift.
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    if (im.inverseMass[i] == 0.0) {
+      continue; // fixed
+    }
+    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
+    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
+    if (planar) {
+      p.velocity[i].z() = 0.0;
+      p.angularVelocity[i].x() = 0.0;
+      p.angularVelocity[i].y() = 0.0;
+    }
+    const Vec3 move = dt * p.velocity[i];
+    p.position[i] += move;
+    p.displacement[i] += move;
+    for (int k = 0; k < 3; ++k) {
+      if (d.periodic[k]) {
+        const double lo = d.origin[k];
+        const double length = d.size[k];
+        if (p.position[i][k] < lo) {
+          p.position[i][k] += length;
+        } else if (p.position[i][k] >= lo + length) {
+          p.position[i][k] -= length;
+        }
+      }
+    }
+  }
+  for (Wall& wall : model_.walls) {
+    wall.position += wall.velocity * dt;
+  }
+
+  if (neighboursStale()) {
+    rebuildNeighbours(false);
+  }
+  computeForces(true);
+
+  // Second half kick with the new forces.
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    if (im.inverseMass[i] == 0.0) {
+      continue;
+    }
+    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
+    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
+    if (planar) {
+      p.velocity[i].z() = 0.0;
+      p.angularVelocity[i].x() = 0.0;
+      p.angularVelocity[i].y() = 0.0;
+    }
+  }
+  model_.clock.step += 1;
+  model_.clock.time += dt;
+}
+
+void Simulation::advance(std::int64_t steps)
+{
+  if (impl_->broken) {
+    throw InstabilityError("This run stopped after an instability; rebuild the solver.");
+  }
+  if (steps <= 0 || model_.particles.empty() || timestep_ <= 0.0) {
+    return;
+  }
+  // Last good state: restored if this call goes unstable.
+  exportContacts();
+  const Particles savedParticles = model_.particles;
+  const std::vector<Wall> savedWalls = model_.walls;
+  const ContactHistory savedContacts = model_.contacts;
+  const Clock savedClock = model_.clock;
+  try {
+    for (std::int64_t s = 0; s < steps; ++s) {
+      step();
+      if ((model_.clock.step & 63) == 0) {
+        checkStability("during the run");
+      }
+    }
+    checkStability("at the end of the batch");
+  } catch (const InstabilityError& e) {
+    model_.particles = savedParticles;
+    model_.walls = savedWalls;
+    model_.contacts = savedContacts;
+    model_.clock = savedClock;
+    impl_->broken = true;
+    std::ostringstream msg;
+    msg << e.what() << " The run stopped at step " << savedClock.step << " (t = "
+        << formatValue(savedClock.time) << " s), the last good state, which is kept.";
+    throw InstabilityError(msg.str());
+  }
+  exportContacts();
+}
+
+double Simulation::availableEnergy() const
+{
+  // Kinetic + elastic energy now, plus the potential energy each particle could release
+  // by falling to the lowest wall (or, without walls along gravity, none).
+  const Particles& p = model_.particles;
+  const Vec3 g = model_.gravity;
+  double potential = 0.0;
+  const double gNorm = g.norm();
+  if (gNorm > 0.0) {
+    int axis = 0;
+    g.cwiseAbs().maxCoeff(&axis);
+    const bool down = g[axis] < 0.0;
+    const Wall& floor = model_.walls[axis * 2 + (down ? 0 : 1)];
+    if (floor.active) {
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        potential += p.mass[i] * gNorm * std::abs(p.position[i][axis] - floor.position);
+      }
+    }
+  }
+  const double stored = totalEnergy();
+  double gravitational = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    gravitational -= p.mass[i] * g.dot(p.position[i]);
+  }
+  return potential + (stored - gravitational);
+}
+
+void Simulation::checkStability(const char* when) const
+{
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.position[i].allFinite() || !p.velocity[i].allFinite() ||
+        !p.angularVelocity[i].allFinite()) {
+      throw InstabilityError(std::string("The run went unstable ") + when + ": particle " +
+        std::to_string(p.id[i]) + " has a non-finite position or velocity (timestep " +
+        formatValue(timestep_) + " s, critical " + formatValue(critical_) + " s).");
+    }
+  }
+  std::size_t escaped = 0;
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const bool walled = model_.walls[2 * k].active;
+      if (walled && (p.position[i][k] < model_.walls[2 * k].position ||
+                     p.position[i][k] > model_.walls[2 * k + 1].position)) {
+        if (escaped++ == 0) {
+          first = i;
+        }
+        break;
+      }
+    }
+  }
+  if (escaped > 0) {
+    const Vec3& x = p.position[first];
+    throw InstabilityError(std::string("The run went unstable ") + when + ": " +
+      std::to_string(escaped) + " particle(s) escaped the box (particle " +
+      std::to_string(p.id[first]) + " at (" + formatValue(x.x()) + ", " + formatValue(x.y()) +
+      ", " + formatValue(x.z()) + ") m).");
+  }
+  (void)d;
+  double kinetic = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    kinetic += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
+      0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm();
+  }
+  const double limit = 2.0 * initialAvailableEnergy_ + 1e-300;
+  if (kinetic > limit) {
+    throw InstabilityError(std::string("The run went unstable ") + when + ": kinetic energy " +
+      formatValue(kinetic) + " J exceeds twice the energy available at the start (" +
+      formatValue(initialAvailableEnergy_) + " J) with no source of energy (timestep " +
+      formatValue(timestep_) + " s, critical " + formatValue(critical_) + " s).");
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Diagnostics
+
+Diagnostics Simulation::diagnostics() const
+{
+  const Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  Diagnostics out;
+  out.time = model_.clock.time;
+  out.step = model_.clock.step;
+  double displacement2 = 0.0;
+  double net = 0.0;
+  double contact = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
+      0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm();
+    displacement2 += p.displacement[i].squaredNorm();
+    net += im.unbalancedForce[i];
+    contact += im.contactForceMagnitude[i];
+  }
+  if (!p.empty()) {
+    out.rmsDisplacement = std::sqrt(displacement2 / static_cast<double>(p.size()));
+  }
+  out.unbalancedForceRatio = contact > 0.0 ? net / contact : 0.0;
+  for (double fn : im.pairNormal) {
+    out.contacts += fn > 0.0 ? 1 : 0;
+  }
+  for (double fn : im.wallNormal) {
+    out.contacts += fn > 0.0 ? 1 : 0;
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (model_.walls[2 * k].active && (p.position[i][k] < model_.walls[2 * k].position ||
+                                         p.position[i][k] > model_.walls[2 * k + 1].position)) {
+        ++out.escaped;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+double Simulation::totalEnergy() const
+{
+  const Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const ContactModel& cm = contactModel_;
+  double energy = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    energy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
+      0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm() -
+      p.mass[i] * model_.gravity.dot(p.position[i]);
+  }
+  auto elastic = [&](const PairProperties& pair, double overlap, const Vec3& spring) {
+    if (overlap <= 0.0) {
+      return 0.0;
+    }
+    const double normal = cm.law == ContactLaw::HertzMindlin
+      ? 8.0 / 15.0 * pair.effectiveModulus * std::sqrt(pair.effectiveRadius) * std::pow(overlap, 2.5)
+      : 0.5 * pair.linearNormalStiffness * overlap * overlap;
+    return normal + 0.5 * tangentialStiffness(cm, pair, overlap) * spring.squaredNorm();
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < im.pairI.size(); ++k) {
+    const std::size_t i = im.pairI[k];
+    const std::size_t j = im.pairJ[k];
+    const double overlap =
+      p.radius[i] + p.radius[j] - separation(d, p.position[i], p.position[j]).norm();
+    const PairProperties pair = pairProperties(cm, p.radius[i], im.inverseMass[i] > 0 ? p.mass[i] : inf,
+      p.radius[j], im.inverseMass[j] > 0 ? p.mass[j] : inf, d.section2D, d.slabThickness());
+    energy += elastic(pair, overlap, im.pairSpring[k]);
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int w = 0; w < 6; ++w) {
+      const Wall& wall = model_.walls[w];
+      if (!wall.active) {
+        continue;
+      }
+      const double side = wall.side == 0 ? 1.0 : -1.0;
+      const double overlap = p.radius[i] - (p.position[i][wall.axis] - wall.position) * side;
+      const PairProperties pair = wallProperties(cm, p.radius[i], p.mass[i], d.section2D, d.slabThickness());
+      energy += elastic(pair, overlap, im.wallSpring[i * 6 + w]);
+    }
+  }
+  return energy;
+}
+
+void Simulation::exportContacts()
+{
+  const Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+  struct Entry {
+    std::int64_t a, b;
+    Vec3 spring, roll;
+  };
+  std::vector<Entry> entries;
+  for (std::size_t k = 0; k < im.pairI.size(); ++k) {
+    const Vec3& s = im.pairSpring[k];
+    const Vec3 r = rolling ? im.pairRolling[k] : Vec3::Zero();
+    if (s.isZero(0.0) && r.isZero(0.0)) {
+      continue;
+    }
+    const std::int64_t idI = p.id[im.pairI[k]];
+    const std::int64_t idJ = p.id[im.pairJ[k]];
+    // Stored as A's spring relative to B with idA < idB.
+    if (idI < idJ) {
+      entries.push_back({ idI, idJ, s, r });
+    } else {
+      entries.push_back({ idJ, idI, -s, -r });
+    }
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int w = 0; w < 6; ++w) {
+      const Vec3& s = im.wallSpring[i * 6 + w];
+      const Vec3 r = rolling ? im.wallRolling[i * 6 + w] : Vec3::Zero();
+      if (s.isZero(0.0) && r.isZero(0.0)) {
+        continue;
+      }
+      entries.push_back({ p.id[i], wallPartnerId(w), s, r });
+    }
+  }
+  std::sort(entries.begin(), entries.end(),
+    [](const Entry& x, const Entry& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  ContactHistory& h = model_.contacts;
+  h.clear();
+  for (const Entry& e : entries) {
+    h.idA.push_back(e.a);
+    h.idB.push_back(e.b);
+    h.shearSpring.push_back(e.spring);
+    if (rolling) {
+      h.rollingSpring.push_back(e.roll);
+    }
+  }
+}
+
+} // namespace dem

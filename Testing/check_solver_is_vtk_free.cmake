@@ -1,0 +1,18 @@
+# Fails if any source or header under SOLVER_DIR includes a VTK or ParaView header.
+file(GLOB_RECURSE _files "${SOLVER_DIR}/*.h" "${SOLVER_DIR}/*.hpp" "${SOLVER_DIR}/*.cpp"
+     "${SOLVER_DIR}/*.cxx" "${SOLVER_DIR}/*.txx")
+set(_bad)
+foreach(_f IN LISTS _files)
+  file(STRINGS "${_f}" _lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](vtk|pq|vtkPV|vtkSM)")
+  if(_lines)
+    list(APPEND _bad "${_f}: ${_lines}")
+  endif()
+endforeach()
+list(LENGTH _files _n)
+if(_bad)
+  message(FATAL_ERROR "Solver/ must not include VTK or ParaView headers:\n${_bad}")
+endif()
+if(_n EQUAL 0)
+  message(FATAL_ERROR "no Solver sources found under ${SOLVER_DIR}")
+endif()
+message(STATUS "Solver/ is VTK-free (${_n} files checked)")
