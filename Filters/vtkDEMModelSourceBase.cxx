@@ -40,16 +40,12 @@ vtkDEMModelSourceBase::vtkDEMModelSourceBase()
   , ContactStiffness(0.0)
   , CurrentPorosity(1.0)
   , NumberOfElements(0)
-  , LastMessage(nullptr)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
 }
 
-vtkDEMModelSourceBase::~vtkDEMModelSourceBase()
-{
-  this->SetLastMessage(nullptr);
-}
+vtkDEMModelSourceBase::~vtkDEMModelSourceBase() = default;
 
 int vtkDEMModelSourceBase::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -159,7 +155,7 @@ void vtkDEMModelSourceBase::PublishModel(const dem::Model& model, vtkInformation
 void vtkDEMModelSourceBase::ReportFailure(const char* what, vtkInformationVector* outputVector)
 {
   vtkErrorMacro(<< what);
-  this->SetLastMessage(what);
+  this->LastMessageText = what;
   if (auto* out = vtkMultiBlockDataSet::GetData(outputVector, 0))
   {
     out->Initialize();
@@ -175,7 +171,7 @@ void vtkDEMModelSourceBase::ReportFailure(const char* what, vtkInformationVector
 
 void vtkDEMModelSourceBase::ReportInfo(const std::string& line)
 {
-  this->SetLastMessage(line.c_str());
+  this->LastMessageText = line;
   vtkOutputWindowDisplayText((std::string(this->GetClassName()) + ": " + line + "\n").c_str());
 }
 
@@ -198,5 +194,5 @@ void vtkDEMModelSourceBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ContactStiffness: " << this->ContactStiffness << " N/m\n";
   os << indent << "CurrentPorosity: " << this->CurrentPorosity << "\n";
   os << indent << "NumberOfElements: " << this->NumberOfElements << "\n";
-  os << indent << "LastMessage: " << (this->LastMessage ? this->LastMessage : "(none)") << "\n";
+  os << indent << "LastMessage: " << this->LastMessageText << "\n";
 }

@@ -110,7 +110,7 @@ public:
   /// Read-only: number of particles in the model built by the last execution.
   vtkGetMacro(NumberOfElements, vtkIdType);
   /// Read-only: the last error or report line (empty when none).
-  vtkGetStringMacro(LastMessage);
+  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
 
 protected:
   vtkDEMModelSourceBase();
@@ -118,8 +118,6 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-
-  vtkSetStringMacro(LastMessage);
 
   /// Box from the properties, or from the input's bounds when FitToInput is on and an
   /// input is connected. Writes origin[3] and size[3]; returns false with a message when
@@ -158,7 +156,8 @@ protected:
   double ContactStiffness;
   double CurrentPorosity;
   vtkIdType NumberOfElements;
-  char* LastMessage;
+  // A result, not a parameter: setting it must not call Modified().
+  std::string LastMessageText;
 
 private:
   vtkDEMModelSourceBase(const vtkDEMModelSourceBase&) = delete;

@@ -221,8 +221,21 @@ Simulation::Simulation(Model& model)
     // increment) so that the first half kick sees gravity and the initial contacts.
     computeForces(false);
   } else {
-    // Resumed: the stored forces are those of the last step; only the diagnostics
-    // arrays need the contact state, which the next step recomputes.
+    // Resumed: the stored forces, torques, springs and wall reactions are those of the
+    // last step and must stay bit for bit. Evaluate the contacts once for the
+    // diagnostics only, then put the stored state back.
+    const std::vector<Vec3> force = model.particles.force;
+    const std::vector<Vec3> torque = model.particles.torque;
+    const std::vector<Wall> walls = model.walls;
+    const Impl saved = *impl_;
+    computeForces(false);
+    model.particles.force = force;
+    model.particles.torque = torque;
+    model.walls = walls;
+    impl_->pairSpring = saved.pairSpring;
+    impl_->pairRolling = saved.pairRolling;
+    impl_->wallSpring = saved.wallSpring;
+    impl_->wallRolling = saved.wallRolling;
   }
   initialAvailableEnergy_ = availableEnergy();
 }

@@ -1,0 +1,365 @@
+#include "vtkDEMLoadTest.h"
+
+#include "vtkDEMModelConversion.h"
+
+#include "dem/Errors.h"
+#include "dem/Model.h"
+#include "dem/Pack.h"
+#include "dem/Simulation.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+vtkStandardNewMacro(vtkDEMLoadTest);
+
+namespace
+{
+/// In-memory checkpoints are kept within this budget; beyond it every other one goes.
+constexpr double CheckpointBudgetBytes = 1024.0 * 1024.0 * 1024.0;
+
+double ModelBytes(const dem::Model& m)
+{
+  return static_cast<double>(m.particles.size() * dem::Particles::bytesPerParticle() +
+    m.contacts.size() * (2 * sizeof(std::int64_t) + 2 * sizeof(dem::Vec3)));
+}
+}
+
+struct vtkDEMLoadTest::vtkInternals
+{
+  bool Valid = false;
+  bool Failed = false;
+  vtkMTimeType BuildTime = 0;     ///< this filter's MTime when the cache was built
+  vtkMTimeType InputTime = 0;     ///< the input data's MTime when the cache was built
+  dem::Model Model;
+  std::unique_ptr<dem::Simulation> Simulation;
+  int Frame = 0;
+  std::int64_t StepsPerFrame = 1;
+  std::map<int, dem::Model> Checkpoints;
+  std::string GravityNote;
+};
+
+vtkDEMLoadTest::vtkDEMLoadTest()
+  : Mode(MODE_OFF)
+  , FrameInterval(0.01)
+  , NumberOfFrames(20)
+  , StepsPerBatch(100)
+  , ContactLaw(HERTZ_MINDLIN)
+  , TimestepSafety(0.1)
+  , RequestedTimestep(0.0)
+  , SettlingDamping(0.7)
+  , Threads(0)
+  , CriticalTimestep(0.0)
+  , Timestep(0.0)
+  , CurrentPorosity(1.0)
+  , KineticEnergy(0.0)
+  , NumberOfContacts(0)
+  , UnbalancedForceRatio(0.0)
+  , ModelTime(0.0)
+  , CurrentFrame(0)
+  , Internals(new vtkInternals)
+{
+  this->Gravity[0] = 0.0;
+  this->Gravity[1] = 0.0;
+  this->Gravity[2] = -9.81;
+}
+
+vtkDEMLoadTest::~vtkDEMLoadTest()
+{
+  delete this->Internals;
+}
+
+int vtkDEMLoadTest::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
+  return 1;
+}
+
+int vtkDEMLoadTest::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!(this->FrameInterval > 0.0) || this->NumberOfFrames < 1)
+  {
+    // Reported in RequestData; publish no times meanwhile.
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    return 1;
+  }
+  std::vector<double> times(static_cast<std::size_t>(this->NumberOfFrames) + 1);
+  for (std::size_t k = 0; k < times.size(); ++k)
+  {
+    times[k] = static_cast<double>(k) * this->FrameInterval;
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+    static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+int vtkDEMLoadTest::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // A stepped upstream model is consumed at a fixed time (its last time step), so that
+  // changing this stage's time never re-runs the stage before it.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  {
+    const int n = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    const double* steps = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    if (n > 0)
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), steps[n - 1]);
+    }
+  }
+  else
+  {
+    inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+  return 1;
+}
+
+int vtkDEMLoadTest::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
+  const auto start = std::chrono::steady_clock::now();
+  try
+  {
+    if (this->Mode != MODE_OFF)
+    {
+      throw dem::InputError("Mode = " + std::to_string(this->Mode) +
+        " is not available: valid modes are Off (0).");
+    }
+    if (!(this->FrameInterval > 0.0) || !std::isfinite(this->FrameInterval))
+    {
+      throw dem::InputError("Frame Interval = " + dem::formatValue(this->FrameInterval) +
+        " s is out of range: it must be greater than 0 s.");
+    }
+    if (this->NumberOfFrames < 1)
+    {
+      throw dem::InputError("Number Of Frames = " + std::to_string(this->NumberOfFrames) +
+        " is out of range: it must be 1 or more.");
+    }
+    if (this->StepsPerBatch < 1)
+    {
+      throw dem::InputError("Steps per Batch = " + std::to_string(this->StepsPerBatch) +
+        " is out of range: it must be 1 or more.");
+    }
+    if (this->ContactLaw != HERTZ_MINDLIN && this->ContactLaw != LINEAR)
+    {
+      throw dem::InputError("Contact Law = " + std::to_string(this->ContactLaw) +
+        " is out of range: valid values are 0 (Hertz-Mindlin) and 1 (Linear).");
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!std::isfinite(this->Gravity[k]))
+      {
+        throw dem::InputError("Gravity has a non-finite component: every component must be a "
+                              "finite number (m/s^2).");
+      }
+    }
+
+    // Time requested, snapped to a frame.
+    double requested = 0.0;
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    }
+    int frame = static_cast<int>(std::lround(requested / this->FrameInterval));
+    frame = std::max(0, std::min(frame, this->NumberOfFrames));
+
+    // (Re)build the cache when a parameter or the input changed.
+    const bool stale = !in.Valid || this->GetMTime() > in.BuildTime ||
+      (input && input->GetMTime() != in.InputTime);
+    if (stale)
+    {
+      in.Valid = false;
+      in.Failed = false;
+      in.Checkpoints.clear();
+      in.Simulation.reset();
+      in.Model = rockdem::MultiBlockToModel(input);
+      dem::SolverSettings& s = in.Model.solver;
+      s.contactLaw = static_cast<dem::ContactLaw>(this->ContactLaw);
+      s.timestepSafety = this->TimestepSafety;
+      s.requestedTimestep = this->RequestedTimestep;
+      s.settlingDamping = this->SettlingDamping;
+      s.threads = this->Threads;
+      in.Model.gravity = dem::Vec3(this->Gravity[0], this->Gravity[1], this->Gravity[2]);
+      in.GravityNote.clear();
+      if (in.Model.domain.section2D && this->Gravity[0] == 0.0 && this->Gravity[1] == 0.0 &&
+        this->Gravity[2] != 0.0)
+      {
+        in.Model.gravity = dem::Vec3(0.0, -std::abs(this->Gravity[2]), 0.0);
+        in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
+          " m/s^2 along Z acts along -Y in the section plane.";
+      }
+      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.StepsPerFrame =
+        std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
+      in.Frame = 0;
+      in.Checkpoints[0] = in.Model;
+      in.BuildTime = this->GetMTime();
+      in.InputTime = input ? input->GetMTime() : 0;
+      in.Valid = true;
+      if (!in.Simulation->timestepMessage().empty())
+      {
+        vtkWarningMacro(<< in.Simulation->timestepMessage());
+      }
+      if (!in.GravityNote.empty())
+      {
+        vtkOutputWindowDisplayText(("DEM Load Test: " + in.GravityNote + "\n").c_str());
+      }
+    }
+
+    if (frame < in.Frame)
+    {
+      // Back in time: restore the nearest earlier checkpoint and replay.
+      auto it = in.Checkpoints.upper_bound(frame);
+      --it; // frame 0 is always kept
+      in.Model = it->second;
+      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Frame = it->first;
+      in.Failed = false;
+    }
+
+    auto lastStatus = std::chrono::steady_clock::now() - std::chrono::seconds(2);
+    const std::int64_t totalSteps = (frame - in.Frame) * in.StepsPerFrame;
+    std::int64_t done = 0;
+    while (in.Frame < frame && !in.Failed)
+    {
+      std::int64_t remaining = in.StepsPerFrame;
+      while (remaining > 0)
+      {
+        const std::int64_t batch = std::min<std::int64_t>(remaining, this->StepsPerBatch);
+        in.Simulation->advance(batch);
+        remaining -= batch;
+        done += batch;
+        this->UpdateProgress(static_cast<double>(done) / static_cast<double>(totalSteps));
+        const auto now = std::chrono::steady_clock::now();
+        if (now - lastStatus > std::chrono::seconds(1))
+        {
+          lastStatus = now;
+          const dem::Diagnostics d = in.Simulation->diagnostics();
+          std::ostringstream line;
+          line << "DEM Load Test: t = " << dem::formatValue(d.time) << " s (frame " << in.Frame
+               << "/" << frame << ", step " << d.step << "), elapsed "
+               << std::chrono::duration<double>(now - start).count() << " s, RMS displacement "
+               << dem::formatValue(d.rmsDisplacement) << " m, kinetic energy "
+               << dem::formatValue(d.kineticEnergy) << " J, contacts " << d.contacts
+               << ", unbalanced force ratio " << dem::formatValue(d.unbalancedForceRatio) << ", "
+               << in.Simulation->path() << "\n";
+          vtkOutputWindowDisplayText(line.str().c_str());
+        }
+      }
+      ++in.Frame;
+      in.Checkpoints[in.Frame] = in.Model;
+      // Keep the checkpoints within budget: drop every other one (never frame 0).
+      double bytes = 0.0;
+      for (const auto& c : in.Checkpoints)
+      {
+        bytes += ModelBytes(c.second);
+      }
+      if (bytes > CheckpointBudgetBytes && in.Checkpoints.size() > 2)
+      {
+        bool drop = false;
+        for (auto it = std::next(in.Checkpoints.begin()); it != in.Checkpoints.end();)
+        {
+          if (drop && it->first != in.Frame)
+          {
+            it = in.Checkpoints.erase(it);
+          }
+          else
+          {
+            ++it;
+          }
+          drop = !drop;
+        }
+      }
+    }
+  }
+  catch (const dem::InstabilityError& e)
+  {
+    // The solver restored the last good state: report, output it, stop stepping.
+    in.Failed = true;
+    vtkErrorMacro(<< e.what());
+    this->StatusText = e.what();
+  }
+  catch (const std::exception& e)
+  {
+    in.Valid = false;
+    in.Simulation.reset();
+    vtkErrorMacro(<< e.what());
+    this->StatusText = e.what();
+    output->Initialize();
+    return 0;
+  }
+
+  rockdem::ModelToMultiBlock(in.Model, output);
+  const dem::Diagnostics d = in.Simulation->diagnostics();
+  this->CriticalTimestep = in.Simulation->criticalTimestep();
+  this->Timestep = in.Simulation->timestep();
+  this->CurrentPorosity = dem::currentPorosity(in.Model);
+  this->KineticEnergy = d.kineticEnergy;
+  this->NumberOfContacts = static_cast<vtkIdType>(d.contacts);
+  this->UnbalancedForceRatio = d.unbalancedForceRatio;
+  this->ModelTime = in.Model.clock.time;
+  this->CurrentFrame = in.Frame;
+  this->SolverPathText = in.Simulation->path();
+  if (!in.Failed)
+  {
+    std::ostringstream line;
+    line << "t = " << dem::formatValue(d.time) << " s (frame " << in.Frame << ", step " << d.step
+         << "), elapsed "
+         << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+         << " s, RMS displacement " << dem::formatValue(d.rmsDisplacement) << " m, kinetic energy "
+         << dem::formatValue(d.kineticEnergy) << " J, contacts " << d.contacts
+         << ", unbalanced force ratio " << dem::formatValue(d.unbalancedForceRatio)
+         << ", porosity " << dem::formatValue(this->CurrentPorosity) << ", "
+         << in.Simulation->path();
+    this->StatusText = line.str();
+    vtkOutputWindowDisplayText(("DEM Load Test: " + line.str() + "\n").c_str());
+  }
+  output->GetInformation()->Set(
+    vtkDataObject::DATA_TIME_STEP(), static_cast<double>(in.Frame) * this->FrameInterval);
+  return 1;
+}
+
+void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "FrameInterval: " << this->FrameInterval << " s\n";
+  os << indent << "NumberOfFrames: " << this->NumberOfFrames << "\n";
+  os << indent << "StepsPerBatch: " << this->StepsPerBatch << "\n";
+  os << indent << "ContactLaw: " << this->ContactLaw << "\n";
+  os << indent << "TimestepSafety: " << this->TimestepSafety << "\n";
+  os << indent << "RequestedTimestep: " << this->RequestedTimestep << " s\n";
+  os << indent << "SettlingDamping: " << this->SettlingDamping << "\n";
+  os << indent << "Gravity: " << this->Gravity[0] << " " << this->Gravity[1] << " "
+     << this->Gravity[2] << " m/s^2\n";
+  os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "CriticalTimestep: " << this->CriticalTimestep << " s\n";
+  os << indent << "Timestep: " << this->Timestep << " s\n";
+  os << indent << "CurrentPorosity: " << this->CurrentPorosity << "\n";
+  os << indent << "KineticEnergy: " << this->KineticEnergy << " J\n";
+  os << indent << "NumberOfContacts: " << this->NumberOfContacts << "\n";
+  os << indent << "UnbalancedForceRatio: " << this->UnbalancedForceRatio << "\n";
+  os << indent << "ModelTime: " << this->ModelTime << " s\n";
+  os << indent << "CurrentFrame: " << this->CurrentFrame << "\n";
+  os << indent << "Status: " << this->StatusText << "\n";
+  os << indent << "SolverPath: " << this->SolverPathText << "\n";
+}

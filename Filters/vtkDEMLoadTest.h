@@ -1,0 +1,159 @@
+/**
+ * @class   vtkDEMLoadTest
+ * @brief   The time-stepping stage of a RockDEM pipeline: runs the model.
+ *
+ * With Mode Off it simply runs its input model (a pack settling under gravity, say);
+ * loading modes come later. Time contract (DESIGN.md): the filter publishes its own time
+ * steps t_k = k * FrameInterval (s, model time since the start of this stage), k = 0 ..
+ * NumberOfFrames. A request for a later time advances the cached state; a request for an
+ * earlier time restores the nearest earlier in-memory checkpoint and replays (exact, the
+ * solver is deterministic); a parameter change or a new input discards the cache. A frame
+ * is the whole number of physics steps nearest to Frame Interval. Steps per Batch bounds
+ * the physics steps between progress updates and status lines.
+ *
+ * If the run goes unstable it stops with an error naming the cause and outputs the
+ * last good state.
+ *
+ * Units: SI (s, m/s^2, J).
+ */
+#ifndef vtkDEMLoadTest_h
+#define vtkDEMLoadTest_h
+
+#include "RockDEMFiltersModule.h" // for export macro
+#include "vtkMultiBlockDataSetAlgorithm.h"
+
+#include <string> // for the read-only strings
+
+class ROCKDEMFILTERS_EXPORT vtkDEMLoadTest : public vtkMultiBlockDataSetAlgorithm
+{
+public:
+  static vtkDEMLoadTest* New();
+  vtkTypeMacro(vtkDEMLoadTest, vtkMultiBlockDataSetAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ModeType
+  {
+    MODE_OFF = 0
+  };
+  enum ContactLawType
+  {
+    HERTZ_MINDLIN = 0,
+    LINEAR = 1
+  };
+
+  ///@{
+  /// Loading mode. Off: run the model as it is (settling under gravity).
+  vtkSetMacro(Mode, int);
+  vtkGetMacro(Mode, int);
+  ///@}
+
+  ///@{
+  /// Model time between published time steps, s (> 0).
+  vtkSetMacro(FrameInterval, double);
+  vtkGetMacro(FrameInterval, double);
+  ///@}
+
+  ///@{
+  /// Number of frames after the start (>= 1).
+  vtkSetMacro(NumberOfFrames, int);
+  vtkGetMacro(NumberOfFrames, int);
+  ///@}
+
+  ///@{
+  /// Upper bound on physics steps between progress updates (>= 1).
+  vtkSetMacro(StepsPerBatch, int);
+  vtkGetMacro(StepsPerBatch, int);
+  ///@}
+
+  ///@{
+  /// Contact law: 0 Hertz-Mindlin (default), 1 linear.
+  vtkSetMacro(ContactLaw, int);
+  vtkGetMacro(ContactLaw, int);
+  ///@}
+
+  ///@{
+  /// Fraction of the critical timestep used, (0, 1].
+  vtkSetMacro(TimestepSafety, double);
+  vtkGetMacro(TimestepSafety, double);
+  ///@}
+
+  ///@{
+  /// Requested timestep, s; 0 = automatic. A value above the safe one is overridden.
+  vtkSetMacro(RequestedTimestep, double);
+  vtkGetMacro(RequestedTimestep, double);
+  ///@}
+
+  ///@{
+  /// Cundall local damping alpha, [0, 1); 0 for real dynamics.
+  vtkSetMacro(SettlingDamping, double);
+  vtkGetMacro(SettlingDamping, double);
+  ///@}
+
+  ///@{
+  /// Gravity vector, m/s^2. In a 2D section a gravity along Z is turned to -Y (reported).
+  vtkSetVector3Macro(Gravity, double);
+  vtkGetVector3Macro(Gravity, double);
+  ///@}
+
+  ///@{
+  /// Threads for large models (0 = all cores). Results never depend on it.
+  vtkSetMacro(Threads, int);
+  vtkGetMacro(Threads, int);
+  ///@}
+
+  ///@{
+  /// Read-only values of the last update.
+  vtkGetMacro(CriticalTimestep, double);   ///< s
+  vtkGetMacro(Timestep, double);           ///< s, the step in use
+  vtkGetMacro(CurrentPorosity, double);    ///< -
+  vtkGetMacro(KineticEnergy, double);      ///< J
+  vtkGetMacro(NumberOfContacts, vtkIdType);
+  vtkGetMacro(UnbalancedForceRatio, double);
+  vtkGetMacro(ModelTime, double);          ///< s, the model clock
+  vtkGetMacro(CurrentFrame, int);
+  const char* GetStatus() const { return this->StatusText.c_str(); } ///< last status line (or error)
+  const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial"
+  ///@}
+
+protected:
+  vtkDEMLoadTest();
+  ~vtkDEMLoadTest() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+
+  int Mode;
+  double FrameInterval;
+  int NumberOfFrames;
+  int StepsPerBatch;
+  int ContactLaw;
+  double TimestepSafety;
+  double RequestedTimestep;
+  double SettlingDamping;
+  double Gravity[3];
+  int Threads;
+
+  double CriticalTimestep;
+  double Timestep;
+  double CurrentPorosity;
+  double KineticEnergy;
+  vtkIdType NumberOfContacts;
+  double UnbalancedForceRatio;
+  double ModelTime;
+  int CurrentFrame;
+  // Read-only values are results, not parameters: setting them must not call Modified().
+  std::string StatusText;
+  std::string SolverPathText;
+
+private:
+  vtkDEMLoadTest(const vtkDEMLoadTest&) = delete;
+  void operator=(const vtkDEMLoadTest&) = delete;
+
+  struct vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

@@ -1,0 +1,11 @@
+# Solver benchmark (included from Testing/Benchmarks/CMakeLists.txt). Prints throughput
+# (particle-steps per second, memory per particle) and, with --sweep, speed against
+# accuracy over Timestep Safety; see Documentation/Benchmarks-Solver.md.
+add_executable(rockdem_bench_solver bench_solver.cpp)
+target_link_libraries(rockdem_bench_solver PRIVATE RockDEM::solver)
+target_compile_options(rockdem_bench_solver PRIVATE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic>)
+# Smoke run (well under 10 s): 5000 particles x 100 steps per pack and thread count, and a
+# two-point sweep on reduced workloads. The real figures come from running it by hand.
+add_test(NAME BenchSolverSmoke COMMAND rockdem_bench_solver --quick)
+set_tests_properties(BenchSolverSmoke PROPERTIES TIMEOUT 60)

@@ -1,0 +1,743 @@
+// Solver benchmark: throughput of the CPU time-stepping solver, and speed against accuracy.
+//
+// Throughput (default mode). Gravity settling of N spheres with Hertz-Mindlin contacts for
+// a fixed number of steps; prints particle-steps per second with one thread and with all
+// cores, plus resident memory per particle. Packs (SI units):
+//   mono    buildPack, radius 1 mm, in the lower half of the box (loose random pack,
+//           porosity ~0.75 where placed, particles start at rest, not touching);
+//   poly    the same with radii uniform in [1, 2] mm (2:1);
+//   lattice contact-rich: a simple cubic lattice of 1 mm spheres filling the whole box,
+//           spacing 2r (1 - 2e-3), so that every particle starts with its 6 neighbours
+//           (or walls) in contact (overlap 4 um, force ~100 particle weights): every contact
+//           stays loaded for the whole run.
+// Material: density 2650 kg/m^3, E 1e8 Pa, nu 0.25, restitution 0.5, friction 0.5,
+// Settling Damping 0.7 (default), gravity 9.81 m/s^2, Timestep Safety 0.1 (default).
+// Only advance() is timed (pack building and the Simulation constructor are not).
+//
+//   rockdem_bench_solver [--sizes 10000,100000,1000000] [--steps N] [--packs mono,poly,lattice]
+//                        [--threads 1,2] [--damping 0.7] [--sort] [--repeat R] [--csv FILE]
+//                        [--quick]
+//   rockdem_bench_solver --sweep [--csv FILE] [--sweep-particles 5000] [--safeties 0.05,0.1,...]
+//   rockdem_bench_solver --write-pack FILE --pack poly --sizes 10000
+//
+// --repeat R runs each configuration R times and reports the fastest (the machine may be
+// shared). --sort reorders the particle slots along a space-filling order before the run (an
+// experiment: the solver keeps the order it is given; buildPack's order is random).
+// --write-pack writes the pack as "id type diameter density x y z" lines (SI units) with
+// "# key value" header lines (box, timestep, material) for the LIGGGHTS comparison
+// (scripts/benchmark_liggghts.sh), and exits.
+//
+// Sweep (--sweep): for each Timestep Safety s (above 1 with the test-only
+// allowUnsafeTimestep switch and requestedTimestep = s x critical):
+//   (a) a 1 mm sphere hitting a wall at 1 m/s: delivered restitution for e = 0.5 (error =
+//       |delivered - 0.5|), peak force of an elastic (e = 1) impact against the Hertz closed
+//       form (PHYSICS.md s.1), steps in contact per collision, wall seconds;
+//   (b) 40 elastic frictionless spheres (e = 1, no gravity, no damping) in a 4 cm box for a
+//       fixed model time (1e5 steps at s = 0.05): worst relative drift of the total energy;
+//   (c) a settling pack (poly, --sweep-particles, damping 0.7, gravity) for a fixed model
+//       time of 0.1 s: final kinetic energy and porosity, wall seconds.
+// Any dem::InstabilityError is caught and reported in the status columns. CSV on stdout
+// (and in --csv FILE).
+#include "dem/Pack.h"
+#include "dem/Simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Benchmark material (SI).
+constexpr double kDensity = 2650.0;      // kg/m^3
+constexpr double kYoung = 1.0e8;         // Pa
+constexpr double kPoisson = 0.25;
+constexpr double kRestitution = 0.5;
+constexpr double kFriction = 0.5;
+constexpr double kPlacementPorosity = 0.75; // void fraction of the region the pack is placed in
+constexpr double kLatticeOverlap = 2.0e-3;  // lattice spacing 2r (1 - this)
+
+struct Options {
+  std::vector<long> sizes{ 10000, 100000, 1000000 };
+  long steps = -1; // -1: by size
+  std::vector<std::string> packs{ "mono", "poly", "lattice" };
+  std::vector<int> threads;  // empty: 1 and all cores
+  double damping = 0.7;
+  bool sort = false;
+  int repeat = 1;  // runs per configuration; the fastest is reported
+  bool quick = false;
+  bool sweep = false;
+  std::string csv;
+  std::string writePack;
+  std::string pack = "poly"; // for --write-pack
+  long sweepParticles = 5000;
+  std::vector<double> safeties{ 0.02, 0.035, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5,
+                                0.7, 1.0, 1.5, 2.0, 3.0 };
+};
+
+template <class T>
+std::vector<T> parseList(const char* text)
+{
+  std::vector<T> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) {
+      std::stringstream is(item);
+      T value{};
+      is >> value;
+      out.push_back(value);
+    }
+  }
+  return out;
+}
+
+[[noreturn]] void usage(const char* argv0)
+{
+  std::fprintf(stderr,
+    "usage: %s [--sizes N1,N2,...] [--steps N] [--packs mono,poly,lattice] [--threads 1,2]\n"
+    "          [--damping A] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
+    "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
+    "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--sort]\n",
+    argv0, argv0, argv0);
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (a == "--sizes" && hasValue) {
+      o.sizes = parseList<long>(argv[++i]);
+    } else if (a == "--steps" && hasValue) {
+      o.steps = std::atol(argv[++i]);
+    } else if (a == "--packs" && hasValue) {
+      o.packs = parseList<std::string>(argv[++i]);
+    } else if (a == "--pack" && hasValue) {
+      o.pack = argv[++i];
+    } else if (a == "--threads" && hasValue) {
+      o.threads = parseList<int>(argv[++i]);
+    } else if (a == "--damping" && hasValue) {
+      o.damping = std::atof(argv[++i]);
+    } else if (a == "--repeat" && hasValue) {
+      o.repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--sort") {
+      o.sort = true;
+    } else if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--sweep") {
+      o.sweep = true;
+    } else if (a == "--csv" && hasValue) {
+      o.csv = argv[++i];
+    } else if (a == "--write-pack" && hasValue) {
+      o.writePack = argv[++i];
+    } else if (a == "--sweep-particles" && hasValue) {
+      o.sweepParticles = std::atol(argv[++i]);
+    } else if (a == "--safeties" && hasValue) {
+      o.safeties = parseList<double>(argv[++i]);
+    } else {
+      usage(argv[0]);
+    }
+  }
+  for (const std::string& p : o.packs) {
+    if (p != "mono" && p != "poly" && p != "lattice") {
+      usage(argv[0]);
+    }
+  }
+  return o;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int coreCount()
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// ---------------------------------------------------------------------------------------
+// Resident memory (Linux /proc/self/status; 0 elsewhere)
+
+long readStatusKiB(const char* key)
+{
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::size_t len = std::strlen(key);
+  while (std::getline(in, line)) {
+    if (line.compare(0, len, key) == 0 && line.size() > len && line[len] == ':') {
+      return std::atol(line.c_str() + len + 1);
+    }
+  }
+  return 0;
+}
+
+/// VmRSS in bytes, after giving freed heap memory back to the system.
+double residentBytes()
+{
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+  return 1024.0 * static_cast<double>(readStatusKiB("VmRSS"));
+}
+
+/// Resets the peak resident size (VmHWM) to the current one (Linux >= 4.0).
+void resetPeakResident()
+{
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+}
+
+double peakResidentBytes() { return 1024.0 * static_cast<double>(readStatusKiB("VmHWM")); }
+
+// ---------------------------------------------------------------------------------------
+// Models
+
+void setMaterial(dem::Model& m)
+{
+  m.material.density = kDensity;
+  m.material.youngsModulus = kYoung;
+  m.material.poissonsRatio = kPoisson;
+  m.material.restitution = kRestitution;
+  m.material.friction = kFriction;
+  m.material.rollingFriction = 0.0;
+  m.gravity = dem::Vec3(0.0, 0.0, -9.81);
+}
+
+/// Reorders the particle slots along the cells of a grid (cell edge = largest diameter),
+/// visited in Morton (Z-curve) order. Ids move with their particles.
+void sortSpatially(dem::Model& m)
+{
+  dem::Particles& p = m.particles;
+  const std::size_t n = p.size();
+  if (n == 0) {
+    return;
+  }
+  const double cell = 2.0 * *std::max_element(p.radius.begin(), p.radius.end());
+  auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::vector<std::uint64_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const dem::Vec3 c = (p.position[i] - m.domain.origin) / cell;
+    key[i] = spread(static_cast<std::uint64_t>(std::max(0.0, c.x()))) |
+      spread(static_cast<std::uint64_t>(std::max(0.0, c.y()))) << 1 |
+      spread(static_cast<std::uint64_t>(std::max(0.0, c.z()))) << 2;
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  dem::Particles q;
+  q.reserve(n);
+  for (std::size_t k : order) {
+    q.append(p.position[k], p.radius[k], p.id[k], p.flags[k]);
+    const std::size_t s = q.size() - 1;
+    q.velocity[s] = p.velocity[k];
+    q.angularVelocity[s] = p.angularVelocity[k];
+    q.displacement[s] = p.displacement[k];
+  }
+  p = std::move(q);
+  dem::updateMassProperties(m);
+}
+
+/// The benchmark model of `pack` with about `n` particles (the lattice rounds n to a cube).
+dem::Model makeBenchModel(const std::string& pack, long n, dem::PackReport* report = nullptr)
+{
+  dem::Model m;
+  setMaterial(m);
+  if (pack == "lattice") {
+    const double r = 0.001; // m
+    const long side = std::max(1L, std::lround(std::cbrt(static_cast<double>(n))));
+    const double spacing = 2.0 * r * (1.0 - kLatticeOverlap);
+    m.domain.origin = dem::Vec3::Zero();
+    m.domain.size = dem::Vec3::Constant(side * spacing);
+    m.particles.reserve(static_cast<std::size_t>(side * side * side));
+    for (long k = 0; k < side; ++k) {
+      for (long j = 0; j < side; ++j) {
+        for (long i = 0; i < side; ++i) {
+          const dem::Vec3 x((i + 0.5) * spacing, (j + 0.5) * spacing, (k + 0.5) * spacing);
+          m.particles.append(x, r, m.nextId++);
+        }
+      }
+    }
+    dem::updateMassProperties(m);
+    return m;
+  }
+  dem::PackParameters params;
+  params.minimumSize = 0.001; // m
+  params.maximumSize = pack == "mono" ? 0.001 : 0.002;
+  params.initialElements = n;
+  params.randomSeed = 12345;
+  const double a = params.minimumSize;
+  const double b = params.maximumSize;
+  const double meanVolume = 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0; // m^3
+  // Pack region: a cube holding n particles at the placement porosity; the box is twice
+  // as tall, so the pack fills its lower half.
+  const double edge = std::cbrt(static_cast<double>(n) * meanVolume / (1.0 - kPlacementPorosity));
+  m.domain.origin = dem::Vec3::Zero();
+  m.domain.size = dem::Vec3(edge, edge, edge);
+  const dem::PackReport built = dem::buildPack(m, params);
+  if (report) {
+    *report = built;
+  }
+  m.domain.size.z() = 2.0 * edge;
+  return m;
+}
+
+/// Sets the timestep to safety x critical (above 1 with the test-only unsafe switch).
+void setSafety(dem::Model& m, double safety)
+{
+  if (safety <= 1.0) {
+    m.solver.timestepSafety = safety;
+    m.solver.requestedTimestep = 0.0;
+    m.solver.allowUnsafeTimestep = false;
+  } else {
+    m.solver.allowUnsafeTimestep = true;
+    m.solver.requestedTimestep = safety * dem::criticalTimestep(m, m.solver.contactLaw);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Throughput
+
+struct CsvOut {
+  std::FILE* file = nullptr;
+  explicit CsvOut(const std::string& path)
+  {
+    if (!path.empty()) {
+      file = std::fopen(path.c_str(), "w");
+      if (!file) {
+        std::fprintf(stderr, "cannot write %s\n", path.c_str());
+        std::exit(1);
+      }
+    }
+  }
+  ~CsvOut()
+  {
+    if (file) {
+      std::fclose(file);
+    }
+  }
+  void line(const std::string& text, bool echo)
+  {
+    if (echo) {
+      std::printf("%s\n", text.c_str());
+      std::fflush(stdout);
+    }
+    if (file) {
+      std::fprintf(file, "%s\n", text.c_str());
+      std::fflush(file);
+    }
+  }
+};
+
+long defaultSteps(long n)
+{
+  if (n <= 20000) {
+    return 2000;
+  }
+  if (n <= 200000) {
+    return 500;
+  }
+  return 200;
+}
+
+int runThroughput(const Options& o)
+{
+  CsvOut csv(o.csv);
+  std::vector<int> threadList = o.threads;
+  if (threadList.empty()) {
+    threadList.push_back(1);
+    if (coreCount() > 1) {
+      threadList.push_back(coreCount());
+    }
+  }
+  std::printf("RockDEM solver throughput: Hertz-Mindlin, E %.3g Pa, nu %.2f, rho %.0f, e %.2f, mu %.2f, "
+              "damping %.2f, gravity 9.81, Timestep Safety 0.1%s; %d cores\n",
+              kYoung, kPoisson, kDensity, kRestitution, kFriction, o.damping,
+              o.sort ? ", particles sorted spatially" : "", coreCount());
+  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s\n", "pack", "N", "threads",
+              "path", "steps", "dt(s)", "time(s)", "p-steps/s", "contacts", "model", "solver",
+              "peak");
+  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s\n", "", "", "", "", "", "",
+              "", "", "(end)", "B/part", "B/part", "B/part");
+  csv.line("pack,N,threads,path,steps,timestep_s,seconds,particle_steps_per_s,contacts_end,"
+           "model_bytes_per_particle,solver_bytes_per_particle,peak_bytes_per_particle,kinetic_energy_end_J",
+           false);
+  for (long requested : o.sizes) {
+    const long steps = o.steps > 0 ? o.steps : (o.quick ? 100 : defaultSteps(requested));
+    for (const std::string& pack : o.packs) {
+      for (int threads : threadList) {
+        double seconds = 0.0;
+        double rss0 = 0.0, rss1 = 0.0, rss2 = 0.0, peak = 0.0, n = 0.0;
+        std::size_t contacts = 0;
+        double kinetic = 0.0;
+        std::string path;
+        double timestep = 0.0;
+        dem::PackReport report;
+        for (int rep = 0; rep < o.repeat; ++rep) {
+          rss0 = residentBytes();
+          dem::Model model = makeBenchModel(pack, requested, &report);
+          if (o.sort) {
+            sortSpatially(model);
+          }
+          model.solver.settlingDamping = o.damping;
+          model.solver.threads = threads;
+          model.solver.parallelThreshold = threads > 1 ? 0 : model.solver.parallelThreshold;
+          n = static_cast<double>(model.particles.size());
+          rss1 = residentBytes();
+          dem::Simulation sim(model);
+          rss2 = residentBytes();
+          resetPeakResident();
+          const auto start = std::chrono::steady_clock::now();
+          sim.advance(steps);
+          const double elapsed = secondsSince(start);
+          peak = peakResidentBytes();
+          seconds = rep == 0 ? elapsed : std::min(seconds, elapsed);
+          contacts = sim.diagnostics().contacts;
+          kinetic = sim.diagnostics().kineticEnergy;
+          path = sim.path();
+          timestep = sim.timestep();
+        }
+        const double rate = n * static_cast<double>(steps) / seconds;
+        const double modelBytes = (rss1 - rss0) / n;
+        const double solverBytes = (rss2 - rss1) / n;
+        const double peakBytes = (peak - rss0) / n;
+        std::printf("%-8s %9.0f %7d %-22s %6ld %10.4g %8.3f %12.4g %9zu %8.0f %8.0f %8.0f\n",
+                    pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
+                    contacts, modelBytes, solverBytes, peakBytes);
+        std::fflush(stdout);
+        char line[512];
+        std::snprintf(line, sizeof(line), "%s,%.0f,%d,%s,%ld,%.9g,%.6f,%.6g,%zu,%.1f,%.1f,%.1f,%.8g",
+                      pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
+                      contacts, modelBytes, solverBytes, peakBytes, kinetic);
+        csv.line(line, false);
+        if (report.saturated) {
+          std::printf("  note: %s\n", report.summary().c_str());
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+int writePack(const Options& o)
+{
+  const long n = o.sizes.empty() ? 10000 : o.sizes.front();
+  dem::Model model = makeBenchModel(o.pack, n);
+  if (o.sort) {
+    sortSpatially(model);
+  }
+  model.solver.settlingDamping = o.damping;
+  const double critical = dem::criticalTimestep(model, model.solver.contactLaw);
+  std::FILE* f = std::fopen(o.writePack.c_str(), "w");
+  if (!f) {
+    std::fprintf(stderr, "cannot write %s\n", o.writePack.c_str());
+    return 1;
+  }
+  const dem::Particles& p = model.particles;
+  const dem::Vec3 lo = model.domain.origin;
+  const dem::Vec3 hi = model.domain.upper();
+  const auto [rmin, rmax] = std::minmax_element(p.radius.begin(), p.radius.end());
+  std::fprintf(f, "# RockDEM bench_solver pack '%s'\n", o.pack.c_str());
+  std::fprintf(f, "# particles %zu\n", p.size());
+  std::fprintf(f, "# box %.17g %.17g %.17g %.17g %.17g %.17g\n", lo.x(), hi.x(), lo.y(), hi.y(),
+               lo.z(), hi.z());
+  std::fprintf(f, "# timestep %.17g\n", model.solver.timestepSafety * critical);
+  std::fprintf(f, "# critical_timestep %.17g\n", critical);
+  std::fprintf(f, "# skin %.17g\n", model.solver.skin * *rmin);
+  std::fprintf(f, "# radius_min %.17g\n# radius_max %.17g\n", *rmin, *rmax);
+  std::fprintf(f, "# density %.17g\n# youngs_modulus %.17g\n# poissons_ratio %.17g\n",
+               model.material.density, model.material.youngsModulus,
+               model.material.poissonsRatio);
+  std::fprintf(f, "# restitution %.17g\n# friction %.17g\n# gravity %.17g\n",
+               model.material.restitution, model.material.friction, -model.gravity.z());
+  std::fprintf(f, "# columns: id type diameter density x y z\n");
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::fprintf(f, "%lld 1 %.17g %.17g %.17g %.17g %.17g\n", static_cast<long long>(p.id[i] + 1),
+                 2.0 * p.radius[i], model.material.density, p.position[i].x(),
+                 p.position[i].y(), p.position[i].z());
+  }
+  std::fclose(f);
+  std::printf("wrote %zu particles to %s (timestep %.9g s)\n", p.size(), o.writePack.c_str(),
+              model.solver.timestepSafety * critical);
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweep: speed against accuracy
+
+struct SweepScale {
+  double energyModelSteps = 5000.0; // energy test model time, in critical timesteps
+  long settleParticles = 5000;
+  double settleTime = 0.1;          // s
+};
+
+std::string statusOf(const std::exception& e)
+{
+  std::string s = e.what();
+  const bool escaped = s.find("escaped") != std::string::npos;
+  const bool energy = s.find("kinetic energy") != std::string::npos;
+  const bool nonFinite = s.find("non-finite") != std::string::npos;
+  return escaped ? "unstable:escaped" : energy ? "unstable:energy" : nonFinite ? "unstable:nan" : "unstable";
+}
+
+dem::Model emptyBox(double e, double box)
+{
+  dem::Model m;
+  m.domain.origin = dem::Vec3::Constant(-0.5 * box);
+  m.domain.size = dem::Vec3::Constant(box);
+  setMaterial(m);
+  m.material.restitution = e;
+  m.material.friction = 0.0;
+  m.gravity.setZero();
+  m.solver.settlingDamping = 0.0;
+  return m;
+}
+
+struct Impact {
+  bool ended = false;
+  std::string status = "ok";
+  double restitution = 0.0; // delivered
+  double maxForce = 0.0;    // N
+  long stepsInContact = 0;
+  double timestep = 0.0;
+};
+
+/// A 1 mm sphere hits the low Z wall head-on at 1 m/s.
+Impact sphereWallImpact(double safety, double e)
+{
+  Impact out;
+  dem::Model m = emptyBox(e, 0.02);
+  const double r = 0.001;
+  const double speed = 1.0;
+  m.particles.append(dem::Vec3(0.0, 0.0, m.domain.origin.z() + r + 1.0e-7), r, m.nextId++);
+  m.particles.velocity[0] = dem::Vec3(0.0, 0.0, -speed);
+  dem::updateMassProperties(m);
+  setSafety(m, safety);
+  try {
+    dem::Simulation sim(m);
+    out.timestep = sim.timestep();
+    const double floorZ = m.domain.origin.z();
+    auto overlap = [&] { return r - (m.particles.position[0].z() - floorZ); };
+    bool started = false;
+    for (long k = 0; k < 1000000; ++k) {
+      sim.advance(1);
+      const double d = overlap();
+      if (d > 0.0) {
+        started = true;
+        ++out.stepsInContact;
+        out.maxForce = std::max(out.maxForce, m.walls[4].force.norm());
+      } else if (started) {
+        out.ended = true;
+        break;
+      }
+    }
+    out.restitution = m.particles.velocity[0].z() / speed;
+    if (!out.ended) {
+      out.status = "no-rebound";
+    }
+  } catch (const dem::InstabilityError& ex) {
+    out.status = statusOf(ex);
+  }
+  return out;
+}
+
+struct EnergyRun {
+  std::string status = "ok";
+  double drift = 0.0; // worst |E - E0| / E0
+  long steps = 0;
+  double seconds = 0.0;
+};
+
+/// 40 elastic frictionless spheres (2 mm) at random speeds up to 1 m/s per axis in a
+/// 4 cm box, no gravity, no damping (as Testing/Solver/TestDynamics.cpp, Energy test).
+EnergyRun elasticEnergy(double safety, const SweepScale& scale)
+{
+  EnergyRun out;
+  dem::Model m = emptyBox(1.0, 0.04);
+  dem::Random rng(5);
+  for (int k = 0; k < 40; ++k) {
+    const dem::Vec3 x(rng.uniform(-0.015, 0.015), rng.uniform(-0.015, 0.015),
+                      rng.uniform(-0.015, 0.015));
+    bool clear = true;
+    for (std::size_t j = 0; j < m.particles.size(); ++j) {
+      clear = clear && (m.particles.position[j] - x).norm() > 0.0045;
+    }
+    if (clear) {
+      const std::size_t s = m.particles.size();
+      m.particles.append(x, 0.002, m.nextId++);
+      m.particles.velocity[s] =
+        dem::Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    }
+  }
+  dem::updateMassProperties(m);
+  setSafety(m, safety);
+  const double critical = dem::criticalTimestep(m, m.solver.contactLaw);
+  const long total = std::max(1L, std::lround(scale.energyModelSteps / safety));
+  const long batch = std::max(1L, total / 100);
+  (void)critical;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    dem::Simulation sim(m);
+    const double e0 = sim.totalEnergy();
+    while (out.steps < total) {
+      const long now = std::min(batch, total - out.steps);
+      sim.advance(now);
+      out.steps += now;
+      out.drift = std::max(out.drift, std::abs(sim.totalEnergy() - e0) / e0);
+    }
+  } catch (const dem::InstabilityError& ex) {
+    out.status = statusOf(ex);
+  }
+  out.seconds = secondsSince(start);
+  return out;
+}
+
+struct SettleRun {
+  std::string status = "ok";
+  long steps = 0;
+  double seconds = 0.0;
+  double kinetic = 0.0;  // J
+  double porosity = 0.0;
+  double unbalanced = 0.0;
+};
+
+SettleRun settle(double safety, const SweepScale& scale)
+{
+  SettleRun out;
+  dem::Model m = makeBenchModel("poly", scale.settleParticles);
+  m.solver.threads = 0;
+  m.solver.parallelThreshold = 0;
+  setSafety(m, safety);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    dem::Simulation sim(m);
+    const long total = std::max(1L, std::lround(scale.settleTime / sim.timestep()));
+    const long batch = std::max(1L, total / 20);
+    while (out.steps < total) {
+      const long now = std::min(batch, total - out.steps);
+      sim.advance(now);
+      out.steps += now;
+    }
+    const dem::Diagnostics d = sim.diagnostics();
+    out.kinetic = d.kineticEnergy;
+    out.unbalanced = d.unbalancedForceRatio;
+    out.porosity = dem::currentPorosity(m);
+  } catch (const dem::InstabilityError& ex) {
+    out.status = statusOf(ex);
+  }
+  out.seconds = secondsSince(start);
+  return out;
+}
+
+int runSweep(const Options& o)
+{
+  CsvOut csv(o.csv);
+  SweepScale scale;
+  std::vector<double> safeties = o.safeties;
+  scale.settleParticles = o.sweepParticles;
+  if (o.quick) {
+    scale.energyModelSteps = 200.0;
+    scale.settleParticles = std::min(o.sweepParticles, 300L);
+    scale.settleTime = 0.005;
+    safeties = { 0.1, 3.0 };
+  }
+  // Hertz closed form for the elastic impact (PHYSICS.md s.1), rigid wall.
+  const double r = 0.001;
+  const double mass = kDensity * 4.0 / 3.0 * kPi * r * r * r;
+  const double estar = kYoung / (1.0 - kPoisson * kPoisson);
+  const double dmax = std::pow(15.0 * mass / (16.0 * estar * std::sqrt(r)), 0.4);
+  const double fmax = 4.0 / 3.0 * estar * std::sqrt(r) * std::pow(dmax, 1.5);
+  const double tc = 2.94328 * dmax;
+  std::fprintf(stderr, "sweep: impact reference Fmax %.6g N, contact time %.6g s; settle %ld particles "
+               "for %.3g s; %d cores\n", fmax, tc, scale.settleParticles, scale.settleTime, coreCount());
+  csv.line("safety,unsafe_switch,impact_timestep_s,restitution_requested,restitution_delivered,"
+           "restitution_error,peak_force_N,peak_force_reference_N,peak_force_error,"
+           "steps_per_collision,collision_time_steps_reference,impact_seconds,impact_status,"
+           "energy_drift,energy_steps,energy_seconds,energy_status,settle_particles,"
+           "settle_steps,settle_seconds,settle_kinetic_J,settle_porosity,settle_unbalanced_ratio,"
+           "settle_status,stable",
+           true);
+  for (double s : safeties) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Impact damped = sphereWallImpact(s, kRestitution);
+    const Impact elastic = sphereWallImpact(s, 1.0);
+    const double impactSeconds = secondsSince(t0);
+    std::string impactStatus = damped.status == "ok" ? elastic.status : damped.status;
+    const EnergyRun energy = elasticEnergy(s, scale);
+    const SettleRun settled = settle(s, scale);
+    const bool stable = impactStatus.rfind("unstable", 0) != 0 &&
+      energy.status == "ok" && settled.status == "ok";
+    char line[1024];
+    std::snprintf(line, sizeof(line),
+                  "%.4g,%d,%.6g,%.3g,%.6g,%.4g,%.6g,%.6g,%.4g,%ld,%.4g,%.4f,%s,%.4g,%ld,%.4f,%s,"
+                  "%ld,%ld,%.4f,%.6g,%.5f,%.4g,%s,%d",
+                  s, s > 1.0 ? 1 : 0, elastic.timestep, kRestitution, damped.restitution,
+                  std::abs(damped.restitution - kRestitution), elastic.maxForce, fmax,
+                  std::abs(elastic.maxForce - fmax) / fmax, elastic.stepsInContact,
+                  elastic.timestep > 0.0 ? tc / elastic.timestep : 0.0, impactSeconds,
+                  impactStatus.c_str(), energy.drift, energy.steps, energy.seconds,
+                  energy.status.c_str(), scale.settleParticles, settled.steps, settled.seconds,
+                  settled.kinetic, settled.porosity, settled.unbalanced, settled.status.c_str(),
+                  stable ? 1 : 0);
+    csv.line(line, true);
+  }
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  Options o = parse(argc, argv);
+  try {
+    if (!o.writePack.empty()) {
+      return writePack(o);
+    }
+    if (o.sweep) {
+      return runSweep(o);
+    }
+    if (o.quick) {
+      o.sizes = { 5000 };
+      const int rc = runThroughput(o);
+      Options s = o;
+      s.csv.clear();
+      return rc != 0 ? rc : runSweep(s);
+    }
+    return runThroughput(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rockdem_bench_solver: %s\n", e.what());
+    return 1;
+  }
+}
