@@ -117,6 +117,7 @@ struct Simulation::Impl {
   std::vector<Vec3> pairTorqueI;     // N m
   std::vector<Vec3> pairTorqueJ;     // N m
   std::vector<double> pairNormal;    // N, normal force magnitude (0 when not touching)
+  std::vector<double> pairMagnitude; // N, |force on i| (for the unbalanced force ratio)
   // Per-particle gather lists (CSR): entries of particle i in [start[i], start[i+1]);
   // an entry is 2 * pair + (1 if the particle is j of the pair).
   std::vector<std::size_t> adjacencyStart;
@@ -127,6 +128,7 @@ struct Simulation::Impl {
   std::vector<Vec3> wallForce;       // N, force of wall w on particle i
   std::vector<Vec3> wallTorque;      // N m
   std::vector<double> wallNormal;    // N
+  std::vector<std::uint8_t> wallMask; // bit w set: particle touches wall w (gather reads only those)
   // Positions at the last neighbour build (for the skin criterion).
   std::vector<Vec3> positionAtBuild;
   double skinDistance = 0.0;         // m
@@ -204,6 +206,7 @@ Simulation::Simulation(Model& model)
   im.wallForce.assign(6 * n, Vec3::Zero());
   im.wallTorque.assign(6 * n, Vec3::Zero());
   im.wallNormal.assign(6 * n, 0.0);
+  im.wallMask.assign(n, 0);
   im.contactForceMagnitude.assign(n, 0.0);
   im.unbalancedForce.assign(n, 0.0);
   const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
@@ -290,6 +293,7 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
   im.pairTorqueI.assign(pairs, Vec3::Zero());
   im.pairTorqueJ.assign(pairs, Vec3::Zero());
   im.pairNormal.assign(pairs, 0.0);
+  im.pairMagnitude.assign(pairs, 0.0);
 
   if (importModelHistory) {
     // Stored history is keyed by global ids: map ids to slots, then find each pair.
@@ -312,6 +316,7 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
         const std::size_t w = static_cast<std::size_t>(-h.idB[c] - 1);
         if (w < 6) {
           im.wallSpring[a * 6 + w] = h.shearSpring[c];
+          im.wallMask[a] |= static_cast<std::uint8_t>(1u << w);
           if (rolling && c < h.rollingSpring.size()) {
             im.wallRolling[a * 6 + w] = h.rollingSpring[c];
           }
@@ -416,13 +421,18 @@ void Simulation::computeForces(bool incrementHistory)
     const double distance = branch.norm();
     const double overlap = p.radius[i] + p.radius[j] - distance;
     if (overlap <= 0.0 || distance == 0.0) {
-      im.pairForce[k].setZero();
-      im.pairTorqueI[k].setZero();
-      im.pairTorqueJ[k].setZero();
-      im.pairNormal[k] = 0.0;
-      im.pairSpring[k].setZero();
-      if (rolling) {
-        im.pairRolling[k].setZero();
+      if (im.pairMagnitude[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
+          (rolling && !im.pairRolling[k].isZero(0.0))) {
+        // The contact just ended: clear its force and history (once, not every step).
+        im.pairForce[k].setZero();
+        im.pairTorqueI[k].setZero();
+        im.pairTorqueJ[k].setZero();
+        im.pairNormal[k] = 0.0;
+        im.pairMagnitude[k] = 0.0;
+        im.pairSpring[k].setZero();
+        if (rolling) {
+          im.pairRolling[k].setZero();
+        }
       }
       continue;
     }
@@ -451,6 +461,7 @@ void Simulation::computeForces(bool incrementHistory)
       torqueJ -= mr;
     }
     im.pairForce[k] = -fn * normal + ft;
+    im.pairMagnitude[k] = im.pairForce[k].norm();
     im.pairTorqueI[k] = torqueI;
     im.pairTorqueJ[k] = torqueJ;
     im.pairNormal[k] = fn;
@@ -460,6 +471,7 @@ void Simulation::computeForces(bool incrementHistory)
   const long count = static_cast<long>(n);
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long i = 0; i < count; ++i) {
+    std::uint8_t mask = 0;
     for (int w = 0; w < 6; ++w) {
       const std::size_t slot = static_cast<std::size_t>(i) * 6 + w;
       const Wall& wall = model_.walls[w];
@@ -467,15 +479,19 @@ void Simulation::computeForces(bool incrementHistory)
       const double distance = (p.position[i][wall.axis] - wall.position) * side;
       const double overlap = wall.active ? p.radius[i] - distance : 0.0;
       if (overlap <= 0.0) {
-        im.wallForce[slot].setZero();
-        im.wallTorque[slot].setZero();
-        im.wallNormal[slot] = 0.0;
-        im.wallSpring[slot].setZero();
-        if (rolling) {
-          im.wallRolling[slot].setZero();
+        if (im.wallMask[i] & (1u << w)) {
+          // The contact just ended: clear its force and history once.
+          im.wallForce[slot].setZero();
+          im.wallTorque[slot].setZero();
+          im.wallNormal[slot] = 0.0;
+          im.wallSpring[slot].setZero();
+          if (rolling) {
+            im.wallRolling[slot].setZero();
+          }
         }
         continue;
       }
+      mask |= static_cast<std::uint8_t>(1u << w);
       const Vec3 normal = -wall.normal(); // from the centre towards the wall
       const double arm = p.radius[i] - overlap;
       Vec3 wallVelocity = Vec3::Zero();
@@ -497,6 +513,7 @@ void Simulation::computeForces(bool incrementHistory)
       im.wallTorque[slot] = torque;
       im.wallNormal[slot] = fn;
     }
+    im.wallMask[i] = mask;
   }
 
   // 3. Gather per particle in a fixed order; Cundall damping on the unbalanced force.
@@ -510,6 +527,9 @@ void Simulation::computeForces(bool incrementHistory)
     double contactMagnitude = 0.0;
     for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
       const std::size_t k = im.adjacency[e] >> 1;
+      if (im.pairMagnitude[k] == 0.0) {
+        continue; // not touching: adds nothing (and skipping +0.0 changes no bit)
+      }
       if (im.adjacency[e] & 1u) {
         force -= im.pairForce[k];
         torque += im.pairTorqueJ[k];
@@ -517,12 +537,14 @@ void Simulation::computeForces(bool incrementHistory)
         force += im.pairForce[k];
         torque += im.pairTorqueI[k];
       }
-      contactMagnitude += im.pairForce[k].norm();
+      contactMagnitude += im.pairMagnitude[k];
     }
     for (int w = 0; w < 6; ++w) {
-      force += im.wallForce[i * 6 + w];
-      torque += im.wallTorque[i * 6 + w];
-      contactMagnitude += im.wallForce[i * 6 + w].norm();
+      if (im.wallMask[i] & (1u << w)) {
+        force += im.wallForce[i * 6 + w];
+        torque += im.wallTorque[i * 6 + w];
+        contactMagnitude += im.wallForce[i * 6 + w].norm();
+      }
     }
     if (planar) {
       force.z() = 0.0;
@@ -547,7 +569,9 @@ void Simulation::computeForces(bool incrementHistory)
   for (int w = 0; w < 6; ++w) {
     Vec3 reaction = Vec3::Zero();
     for (std::size_t i = 0; i < n; ++i) {
-      reaction -= im.wallForce[i * 6 + w];
+      if (im.wallMask[i] & (1u << w)) {
+        reaction -= im.wallForce[i * 6 + w];
+      }
     }
     model_.walls[w].force = reaction;
   }
