@@ -30,18 +30,6 @@ double shearToNormalRatio(double poissonsRatio)
   return 2.0 * (1.0 - poissonsRatio) / (2.0 - poissonsRatio);
 }
 
-/// Rotates a stored tangential vector into the plane normal to n, keeping its length.
-Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
-{
-  const double length = v.norm();
-  if (length == 0.0) {
-    return Vec3::Zero();
-  }
-  const Vec3 projected = inPlane(v, n);
-  const double projectedLength = projected.norm();
-  return projectedLength > 0.0 ? Vec3(projected * (length / projectedLength)) : Vec3(Vec3::Zero());
-}
-
 /// Dimensionless normal force of one collision (see restitutionForDamping).
 double dimensionlessForce(ContactLaw law, double c, double x, double xdot)
 {
@@ -55,6 +43,17 @@ double dimensionlessForce(ContactLaw law, double c, double x, double xdot)
 }
 
 } // namespace
+
+Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
+{
+  const double length = v.norm();
+  if (length == 0.0) {
+    return Vec3::Zero();
+  }
+  const Vec3 projected = inPlane(v, n);
+  const double projectedLength = projected.norm();
+  return projectedLength > 0.0 ? Vec3(projected * (length / projectedLength)) : Vec3(Vec3::Zero());
+}
 
 double restitutionForDamping(ContactLaw law, double c)
 {

@@ -1,5 +1,6 @@
 #include "dem/Simulation.h"
 
+#include "dem/Bonds.h"
 #include "dem/Errors.h"
 #include "dem/SizeClassGrids.h"
 
@@ -42,7 +43,7 @@ int availableThreads()
 // ---------------------------------------------------------------------------------------
 // Timestep, settings, walls
 
-double criticalTimestep(const Model& model, ContactLaw law)
+double contactTimestep(const Model& model, ContactLaw law)
 {
   const Particles& p = model.particles;
   if (p.empty()) {
@@ -72,6 +73,54 @@ double criticalTimestep(const Model& model, ContactLaw law)
     dt = std::min(dt, std::sqrt(p.inertia[i] / (kt * r * r)));
   }
   return dt;
+}
+
+namespace {
+/// Mass-spring limit of the bonds (PHYSICS.md s.2): per particle sqrt(m / sum kn A) and
+/// sqrt(I / sum (kn I_b + ks A r^2)) over all its bonds, intact or broken (so that the
+/// timestep does not change as bonds break and a resumed run keeps it).
+double bondTimestep(const Model& model)
+{
+  const Particles& p = model.particles;
+  const Bonds& b = model.bonds;
+  if (b.size() == 0) {
+    return std::numeric_limits<double>::infinity();
+  }
+  std::vector<std::pair<std::int64_t, std::size_t>> slotOf(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    slotOf[i] = { p.id[i], i };
+  }
+  std::sort(slotOf.begin(), slotOf.end());
+  std::vector<double> translational(p.size(), 0.0);
+  std::vector<double> rotational(p.size(), 0.0);
+  const bool planar = model.domain.section2D;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const BondSection s = bondSection(b.radius[k], planar, model.domain.slabThickness());
+    for (std::int64_t id : { b.idA[k], b.idB[k] }) {
+      auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::size_t(0)));
+      if (it == slotOf.end() || it->first != id) {
+        continue;
+      }
+      const std::size_t i = it->second;
+      const double r = p.radius[i];
+      translational[i] += std::max(b.normalStiffness[k], b.shearStiffness[k]) * s.area;
+      rotational[i] += b.normalStiffness[k] * s.inertia + b.shearStiffness[k] * s.area * r * r;
+    }
+  }
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (translational[i] > 0.0) {
+      dt = std::min(dt, std::sqrt(p.mass[i] / translational[i]));
+      dt = std::min(dt, std::sqrt(p.inertia[i] / rotational[i]));
+    }
+  }
+  return dt;
+}
+} // namespace
+
+double criticalTimestep(const Model& model, ContactLaw law)
+{
+  return std::min(contactTimestep(model, law), bondTimestep(model));
 }
 
 void validate(const SolverSettings& s)
@@ -129,6 +178,14 @@ struct Simulation::Impl {
   std::vector<Vec3> wallTorque;      // N m
   std::vector<double> wallNormal;    // N
   std::vector<std::uint8_t> wallMask; // bit w set: particle touches wall w (gather reads only those)
+  // Bonds (static list, model.bonds order): slots of A and B, per-bond results, and
+  // per-particle gather lists (entry 2 * bond + 1 if the particle is B).
+  std::vector<std::uint32_t> bondI, bondJ;
+  std::vector<Vec3> bondForce;       // N, force on A
+  std::vector<Vec3> bondTorqueI;     // N m
+  std::vector<Vec3> bondTorqueJ;     // N m
+  std::vector<std::size_t> bondAdjacencyStart;
+  std::vector<std::size_t> bondAdjacency;
   // Positions at the last neighbour build (for the skin criterion).
   std::vector<Vec3> positionAtBuild;
   double skinDistance = 0.0;         // m
@@ -219,6 +276,7 @@ Simulation::Simulation(Model& model)
 
   // Import the stored contact history (by global ids) into the neighbour list.
   rebuildNeighbours(true);
+  buildBondLists();
   if (model.clock.step == 0) {
     // A model that has never stepped has no forces yet: compute them (no history
     // increment) so that the first half kick sees gravity and the initial contacts.
@@ -231,7 +289,9 @@ Simulation::Simulation(Model& model)
     const std::vector<Vec3> torque = model.particles.torque;
     const std::vector<Wall> walls = model.walls;
     const Impl saved = *impl_;
+    const Bonds bonds = model.bonds;
     computeForces(false);
+    model.bonds = bonds;
     model.particles.force = force;
     model.particles.torque = torque;
     model.walls = walls;
@@ -516,6 +576,9 @@ void Simulation::computeForces(bool incrementHistory)
     im.wallMask[i] = mask;
   }
 
+  // 2b. Bonds, each once (state updated and failure checked only on a real step).
+  computeBondForces(incrementHistory);
+
   // 3. Gather per particle in a fixed order; Cundall damping on the unbalanced force.
   const double alpha = model_.solver.settlingDamping;
   const Vec3 gravity = model_.gravity;
@@ -545,6 +608,20 @@ void Simulation::computeForces(bool incrementHistory)
         torque += im.wallTorque[i * 6 + w];
         contactMagnitude += im.wallForce[i * 6 + w].norm();
       }
+    }
+    for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+      const std::size_t b = im.bondAdjacency[e] >> 1;
+      if (model_.bonds.broken(b)) {
+        continue;
+      }
+      if (im.bondAdjacency[e] & 1u) {
+        force -= im.bondForce[b];
+        torque += im.bondTorqueJ[b];
+      } else {
+        force += im.bondForce[b];
+        torque += im.bondTorqueI[b];
+      }
+      contactMagnitude += im.bondForce[b].norm();
     }
     if (planar) {
       force.z() = 0.0;
@@ -578,6 +655,123 @@ void Simulation::computeForces(bool incrementHistory)
 }
 
 // ---------------------------------------------------------------------------------------
+// Bonds
+
+void Simulation::buildBondLists()
+{
+  Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const Bonds& b = model_.bonds;
+  const std::size_t n = p.size();
+  std::vector<std::pair<std::int64_t, std::uint32_t>> slotOf(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    slotOf[i] = { p.id[i], static_cast<std::uint32_t>(i) };
+  }
+  std::sort(slotOf.begin(), slotOf.end());
+  auto findSlot = [&](std::int64_t id) {
+    auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::uint32_t(0)));
+    if (it == slotOf.end() || it->first != id) {
+      throw InputError("Bond between particles " + std::to_string(id) +
+                       " refers to a particle that is not in the model.");
+    }
+    return it->second;
+  };
+  im.bondI.resize(b.size());
+  im.bondJ.resize(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    im.bondI[k] = findSlot(b.idA[k]);
+    im.bondJ[k] = findSlot(b.idB[k]);
+  }
+  im.bondForce.assign(b.size(), Vec3::Zero());
+  im.bondTorqueI.assign(b.size(), Vec3::Zero());
+  im.bondTorqueJ.assign(b.size(), Vec3::Zero());
+  // Gather lists in bond order (a fixed order).
+  im.bondAdjacencyStart.assign(n + 1, 0);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    ++im.bondAdjacencyStart[im.bondI[k] + 1];
+    ++im.bondAdjacencyStart[im.bondJ[k] + 1];
+  }
+  std::partial_sum(im.bondAdjacencyStart.begin(), im.bondAdjacencyStart.end(),
+                   im.bondAdjacencyStart.begin());
+  im.bondAdjacency.assign(2 * b.size(), 0);
+  std::vector<std::size_t> fill(im.bondAdjacencyStart.begin(), im.bondAdjacencyStart.end() - 1);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    im.bondAdjacency[fill[im.bondI[k]]++] = 2 * k;
+    im.bondAdjacency[fill[im.bondJ[k]]++] = 2 * k + 1;
+  }
+}
+
+void Simulation::computeBondForces(bool incrementState)
+{
+  Impl& im = *impl_;
+  Particles& p = model_.particles;
+  Bonds& b = model_.bonds;
+  const Domain& d = model_.domain;
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  const double dt = timestep_;
+  const double endTime = model_.clock.time + dt;
+  const long count = static_cast<long>(b.size());
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long lk = 0; lk < count; ++lk) {
+    const std::size_t k = static_cast<std::size_t>(lk);
+    if (b.broken(k)) {
+      continue;
+    }
+    const std::uint32_t i = im.bondI[k];
+    const std::uint32_t j = im.bondJ[k];
+    const Vec3 branch = separation(d, p.position[i], p.position[j]); // A to B
+    const double distance = branch.norm();
+    const Vec3 normal = branch / distance;
+    // The contact point divides the branch in the ratio of the radii.
+    const double armI = distance * p.radius[i] / (p.radius[i] + p.radius[j]);
+    const double armJ = distance - armI;
+    const BondSection section = bondSection(b.radius[k], planar, slab);
+    if (incrementState) {
+      const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+        p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+      const Vec3 relativeSpin = p.angularVelocity[i] - p.angularVelocity[j];
+      const double kn = b.normalStiffness[k];
+      const double ks = b.shearStiffness[k];
+      // dFn = kn A d(separation): positive (tension) when B moves away from A.
+      b.normalForce[k] -= kn * section.area * relativeVelocity.dot(normal) * dt;
+      // dFs = -ks A (tangential displacement of A relative to B), in the rotated plane.
+      b.shearForce[k] = rotateIntoPlane(b.shearForce[k], normal) -
+        ks * section.area * inPlane(relativeVelocity, normal) * dt;
+      // dMt = -ks J d(theta twist) (3D); dMb = -kn I d(theta bend).
+      if (!planar) {
+        b.twistingMoment[k] -= ks * section.polar * relativeSpin.dot(normal) * dt;
+      }
+      b.bendingMoment[k] = rotateIntoPlane(b.bendingMoment[k], normal) -
+        kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+      const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
+        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+      const BondFailure failure =
+        bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
+      if (failure != BondFailure::Intact) {
+        // Broken for good: record how, when, where and how it was oriented.
+        b.failure[k] = static_cast<std::uint8_t>(failure);
+        b.failureTime[k] = endTime;
+        b.failurePosition[k] = p.position[i] + armI * normal;
+        b.failureNormal[k] = normal;
+        b.normalForce[k] = 0.0;
+        b.shearForce[k].setZero();
+        b.twistingMoment[k] = 0.0;
+        b.bendingMoment[k].setZero();
+        im.bondForce[k].setZero();
+        im.bondTorqueI[k].setZero();
+        im.bondTorqueJ[k].setZero();
+        continue;
+      }
+    }
+    const Vec3 twist = b.twistingMoment[k] * normal;
+    im.bondForce[k] = b.normalForce[k] * normal + b.shearForce[k];
+    im.bondTorqueI[k] = armI * normal.cross(b.shearForce[k]) + twist + b.bendingMoment[k];
+    im.bondTorqueJ[k] = armJ * normal.cross(b.shearForce[k]) - twist - b.bendingMoment[k];
+  }
+}
+
+// ---------------------------------------------------------------------------------------
 // Stepping
 
 void Simulation::step()
@@ -594,9 +788,8 @@ void Simulation::step()
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
-    if (im.inverseMass[i] == 0.0) {
-      continue; // fixed
-    }
+    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+    // 0), but it moves with the velocity it was given (at rest unless prescribed).
     p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
     p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
     if (planar) {

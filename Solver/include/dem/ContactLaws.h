@@ -82,6 +82,10 @@ Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double
 /// Removes the component of `v` along the unit normal `n` (projection onto the plane).
 inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
 
+/// Rotates a stored in-plane vector (spring, shear force, bending moment) into the plane
+/// normal to `n`, keeping its length: history follows the rotating contact plane.
+Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n);
+
 /// Restitution delivered by one head-on collision of the given law with damping
 /// coefficient `c` and the no-tension cut-off (dimensionless, speed independent for both
 /// laws). Integrates the collision in dimensionless form with a fine RK4 step.

@@ -9,6 +9,7 @@
 // stable global identity.
 #pragma once
 
+#include "dem/Bonds.h"
 #include "dem/Random.h"
 #include "dem/SolverState.h"
 
@@ -50,7 +51,7 @@ struct Material {
 
 /// Per-particle flag bits (Particles::flags).
 enum ParticleFlag : std::uint32_t {
-  FlagFixed = 1u << 0,    ///< particle does not move (e.g. imported with Fixed = 1)
+  FlagFixed = 1u << 0,    ///< kinematic: forces do not move it; it keeps its given velocity (at rest by default)
   FlagFineZone = 1u << 1, ///< radius was drawn from the fine-zone range
 };
 
@@ -88,8 +89,8 @@ struct Clock {
   double timestep = 0.0;   ///< s, the step the solver uses (0 until it is chosen)
 };
 
-/// Everything needed to continue a run bit for bit (later issues add bonds and the
-/// load-test state machine).
+/// Everything needed to continue a run bit for bit (a later issue adds the load-test
+/// state machine).
 struct Model {
   Domain domain;
   Material material;
@@ -98,6 +99,7 @@ struct Model {
   SolverSettings solver;            ///< time-stepping parameters
   std::vector<Wall> walls;          ///< the box walls (empty until the solver first runs)
   ContactHistory contacts;          ///< tangential and rolling history of live contacts
+  Bonds bonds;                      ///< cement bonds, intact and broken
   Clock clock;
   Random random{ 1 };               ///< the model's random stream (pack placement, strength draws)
   std::int64_t nextId = 0;          ///< next global id to hand out

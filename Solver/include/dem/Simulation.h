@@ -39,9 +39,12 @@ struct Diagnostics {
 
 /// Critical timestep (s) of a model for a contact law (PHYSICS.md section 2): Rayleigh
 /// for Hertz, mass-spring (translation and rotation, a particle with 12 contacts in 3D,
-/// 6 in 2D, at the linear stiffness) for the linear law. Depends on particles and
-/// material only, so a reloaded model gets the same value.
+/// 6 in 2D, at the linear stiffness) for the linear law; bonds in parallel shorten it
+/// (mass-spring over each particle's bonds, intact or broken). Depends on particles,
+/// material and bonds only, so a reloaded model gets the same value.
 double criticalTimestep(const Model& model, ContactLaw law);
+/// The contact part of criticalTimestep (without bonds).
+double contactTimestep(const Model& model, ContactLaw law);
 
 /// Validates the solver settings (InputError naming the parameter).
 void validate(const SolverSettings& settings);
@@ -82,6 +85,8 @@ public:
 
 private:
   void rebuildNeighbours(bool importModelHistory);
+  void buildBondLists();
+  void computeBondForces(bool incrementState);
   bool neighboursStale() const;
   void computeForces(bool incrementHistory);
   void step();

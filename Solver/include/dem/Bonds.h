@@ -1,0 +1,100 @@
+// RockDEM engine: parallel bonds (Potyondy & Cundall 2004; PHYSICS.md section 3).
+//
+// A bond joins two particles with a cement of circular section (3D: radius
+// Rb = multiplier x min(rA, rB); 2D: a rectangle 2 Rb x slab thickness) that acts in
+// parallel with their contact. It carries a normal force, a shear force, a twisting
+// moment (3D only) and a bending moment, updated incrementally from the relative motion
+// and rotated with the contact plane. It breaks for good when its peripheral stress
+// reaches its strength. SI units: m, N, N m, Pa.
+//
+// Rule for a bonded pair: the total interaction is the contact force (Hertz or linear,
+// compression only, while the particles overlap) PLUS the bond force (tension and
+// compression, while the bond is intact). In compression the two springs act in
+// parallel and their stiffnesses add; in tension only the bond acts.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace dem {
+
+using Vec3 = Eigen::Vector3d;
+
+/// How a bond failed.
+enum class BondFailure : std::uint8_t {
+  Intact = 0,
+  Tension = 1,   ///< peripheral tensile stress reached the tensile strength
+  Shear = 2,     ///< peripheral shear stress reached the Mohr-Coulomb strength
+  Inherited = 3, ///< broken before the run (seeded from a fracture network)
+};
+
+/// All bonds of a model, structure of arrays, sorted by (idA, idB) with idA < idB.
+struct Bonds {
+  // Identity and geometry.
+  std::vector<std::int64_t> idA;      ///< global id of particle A
+  std::vector<std::int64_t> idB;      ///< global id of particle B (idA < idB)
+  std::vector<double> radius;         ///< m, bond radius Rb
+  // Stiffness per unit area (Pa/m = N/m^3).
+  std::vector<double> normalStiffness; ///< kn_bar
+  std::vector<double> shearStiffness;  ///< ks_bar
+  // Strengths drawn at cementing.
+  std::vector<double> tensileStrength; ///< Pa, sigma_c
+  std::vector<double> cohesion;        ///< Pa, c
+  std::vector<double> frictionAngle;   ///< rad, phi
+  // State (forces and moments on particle A; B gets the opposite).
+  std::vector<double> normalForce;     ///< N, positive in tension
+  std::vector<Vec3> shearForce;        ///< N, in the bond plane
+  std::vector<double> twistingMoment;  ///< N m, about the bond axis (0 in 2D)
+  std::vector<Vec3> bendingMoment;     ///< N m, in the bond plane
+  // Failure record.
+  std::vector<std::uint8_t> failure;   ///< BondFailure
+  std::vector<double> failureTime;     ///< s (model time), when broken
+  std::vector<Vec3> failurePosition;   ///< m, contact point when broken
+  std::vector<Vec3> failureNormal;     ///< unit bond axis (A to B) when broken
+
+  std::size_t size() const { return idA.size(); }
+  bool broken(std::size_t b) const { return failure[b] != static_cast<std::uint8_t>(BondFailure::Intact); }
+  void clear();
+  /// Appends an intact bond with zero force; strengths and stiffness as given.
+  void append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
+              double sigmaC, double c, double phi);
+};
+
+/// Bond counts for the read-only values.
+struct BondCounts {
+  std::size_t installed = 0;
+  std::size_t broken = 0;
+  std::size_t tension = 0;
+  std::size_t shear = 0;
+  std::size_t inherited = 0;
+  double damage() const { return installed ? static_cast<double>(broken) / installed : 0.0; }
+};
+BondCounts countBonds(const Bonds& bonds);
+
+/// Section properties of a bond (PHYSICS.md s.3): 3D A = pi Rb^2, I = pi Rb^4 / 4,
+/// J = pi Rb^4 / 2; 2D (slab t) A = 2 Rb t, I = 2/3 t Rb^3, J = 0 (no twisting).
+struct BondSection {
+  double area;      ///< m^2
+  double inertia;   ///< m^4, bending
+  double polar;     ///< m^4, twisting (0 in 2D)
+};
+BondSection bondSection(double bondRadius, bool section2D, double slab);
+
+/// Peripheral stresses of a bond state (PHYSICS.md s.3), Pa:
+/// sigma_max = Fn/A + |Mb| Rb / I (tension positive), tau_max = |Fs|/A + |Mt| Rb / J (3D).
+struct BondStresses {
+  double sigmaMax;
+  double tauMax;
+  double compressive; ///< sigma = -Fn / A (compression positive)
+};
+BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
+                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment);
+
+/// The failure a stress state causes (Intact if none): tension if sigma_max >= sigma_c,
+/// else shear if tau_max >= c + sigma tan(phi).
+BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
+                        double frictionAngle);
+
+} // namespace dem

@@ -1,0 +1,48 @@
+// RockDEM engine: cementing a pack into rock (reference guide "Cementing the model").
+#pragma once
+
+#include "dem/Model.h"
+
+#include <cstdint>
+#include <string>
+
+namespace dem {
+
+/// Cement parameters (PHYSICS.md section 3). SI units.
+struct CementParameters {
+  double gapTolerance = 0.05;        ///< bond pairs whose surface gap <= this x the smaller radius, >= 0
+  double bondRadiusMultiplier = 1.0; ///< Rb = multiplier x min(rA, rB), (0, 1]
+  double bondModulus = 1.0e9;        ///< Pa, E_bar: kn_bar = E_bar / (rA + rB)
+  double bondStiffnessRatio = 0.4;   ///< ks_bar / kn_bar, > 0
+  double bondNormalStiffness = 0.0;  ///< N/m^3, explicit kn_bar overriding the modulus; 0 = from modulus
+  double tensileStrength = 10.0e6;   ///< Pa, mean sigma_c, > 0
+  double cohesion = 20.0e6;          ///< Pa, mean c, > 0
+  double frictionAngle = 30.0;       ///< degrees, phi in [0, 90)
+  double strengthScatter = 0.0;      ///< coefficient of variation of the strengths, [0, 1]
+  std::uint64_t randomSeed = 1;      ///< seed of the strength draw
+};
+
+/// Throws InputError naming the parameter for an invalid value.
+void validate(const CementParameters& params);
+
+/// What Cement did.
+struct CementReport {
+  std::size_t bonds = 0;           ///< bonds installed
+  std::size_t replaced = 0;        ///< bonds of the previous set discarded (re-cementing heals)
+  double bondStiffness = 0.0;      ///< N/m^3, kn_bar for two particles of the largest radius
+  std::string summary() const;
+};
+
+/// Installs a bond between every pair touching or nearly so (gap <= gapTolerance x the
+/// smaller radius; periodic seams included), replacing any existing bond set. Each bond
+/// draws its tensile strength and cohesion from a lognormal distribution with the
+/// requested mean and coefficient of variation (identical when the scatter is 0) from a
+/// random stream keyed by (randomSeed, idA, idB): the draw is reproducible and does not
+/// depend on bond order or thread count.
+CementReport cement(Model& model, const CementParameters& params);
+
+/// The random strength factor (mean 1, coefficient of variation `cov`) of the bond
+/// between ids a < b for a seed; `which` selects independent draws (0 tension, 1 cohesion).
+double strengthFactor(std::uint64_t seed, std::int64_t a, std::int64_t b, int which, double cov);
+
+} // namespace dem

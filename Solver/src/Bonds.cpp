@@ -1,0 +1,112 @@
+#include "dem/Bonds.h"
+
+#include <cmath>
+
+namespace dem {
+namespace {
+constexpr double Pi = 3.14159265358979323846;
+}
+
+void Bonds::clear()
+{
+  idA.clear();
+  idB.clear();
+  radius.clear();
+  normalStiffness.clear();
+  shearStiffness.clear();
+  tensileStrength.clear();
+  cohesion.clear();
+  frictionAngle.clear();
+  normalForce.clear();
+  shearForce.clear();
+  twistingMoment.clear();
+  bendingMoment.clear();
+  failure.clear();
+  failureTime.clear();
+  failurePosition.clear();
+  failureNormal.clear();
+}
+
+void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
+                   double sigmaC, double c, double phi)
+{
+  idA.push_back(a);
+  idB.push_back(b);
+  radius.push_back(bondRadius);
+  normalStiffness.push_back(kn);
+  shearStiffness.push_back(ks);
+  tensileStrength.push_back(sigmaC);
+  cohesion.push_back(c);
+  frictionAngle.push_back(phi);
+  normalForce.push_back(0.0);
+  shearForce.push_back(Vec3::Zero());
+  twistingMoment.push_back(0.0);
+  bendingMoment.push_back(Vec3::Zero());
+  failure.push_back(static_cast<std::uint8_t>(BondFailure::Intact));
+  failureTime.push_back(0.0);
+  failurePosition.push_back(Vec3::Zero());
+  failureNormal.push_back(Vec3::Zero());
+}
+
+BondCounts countBonds(const Bonds& bonds)
+{
+  BondCounts counts;
+  counts.installed = bonds.size();
+  for (std::uint8_t f : bonds.failure) {
+    switch (static_cast<BondFailure>(f)) {
+      case BondFailure::Intact:
+        break;
+      case BondFailure::Tension:
+        ++counts.broken;
+        ++counts.tension;
+        break;
+      case BondFailure::Shear:
+        ++counts.broken;
+        ++counts.shear;
+        break;
+      case BondFailure::Inherited:
+        ++counts.broken;
+        ++counts.inherited;
+        break;
+    }
+  }
+  return counts;
+}
+
+BondSection bondSection(double bondRadius, bool section2D, double slab)
+{
+  const double R = bondRadius;
+  if (section2D) {
+    // Rectangle 2R x t through the slab: A = 2 R t, I = 2/3 t R^3, no twisting.
+    return { 2.0 * R * slab, 2.0 / 3.0 * slab * R * R * R, 0.0 };
+  }
+  // Circle: A = pi R^2, I = pi R^4 / 4, J = pi R^4 / 2.
+  const double R2 = R * R;
+  return { Pi * R2, 0.25 * Pi * R2 * R2, 0.5 * Pi * R2 * R2 };
+}
+
+BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
+                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment)
+{
+  BondStresses out;
+  out.sigmaMax = normalForce / s.area + bendingMoment.norm() * bondRadius / s.inertia;
+  out.tauMax = shearForce.norm() / s.area +
+    (s.polar > 0.0 ? std::abs(twistingMoment) * bondRadius / s.polar : 0.0);
+  out.compressive = -normalForce / s.area;
+  return out;
+}
+
+BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
+                        double frictionAngle)
+{
+  if (stresses.sigmaMax >= tensileStrength) {
+    return BondFailure::Tension;
+  }
+  // Mohr-Coulomb: the shear strength grows with the compressive normal stress.
+  if (stresses.tauMax >= cohesion + stresses.compressive * std::tan(frictionAngle)) {
+    return BondFailure::Shear;
+  }
+  return BondFailure::Intact;
+}
+
+} // namespace dem
