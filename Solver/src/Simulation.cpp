@@ -178,6 +178,9 @@ struct Simulation::Impl {
   std::vector<Vec3> wallTorque;      // N m
   std::vector<double> wallNormal;    // N
   std::vector<std::uint8_t> wallMask; // bit w set: particle touches wall w (gather reads only those)
+  std::vector<double> wallStiffness; // N/m, normal stiffness of each wall contact (servo gain)
+  std::vector<double> wallElastic;   // N, elastic part of each wall contact's normal force
+  std::vector<Vec3> undampedForce;   // N, net force before local damping (platen reactions)
   // Bonds (static list, model.bonds order): slots of A and B, per-bond results, and
   // per-particle gather lists (entry 2 * bond + 1 if the particle is B).
   std::vector<std::uint32_t> bondI, bondJ;
@@ -253,7 +256,7 @@ Simulation::Simulation(Model& model)
   im.inverseMass.resize(n);
   im.inverseInertia.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const bool fixed = (p.flags[i] & FlagFixed) != 0;
+    const bool fixed = (p.flags[i] & (FlagFixed | FlagAttachedLow | FlagAttachedHigh)) != 0;
     im.inverseMass[i] = fixed ? 0.0 : 1.0 / p.mass[i];
     im.inverseInertia[i] = fixed ? 0.0 : 1.0 / p.inertia[i];
   }
@@ -264,6 +267,9 @@ Simulation::Simulation(Model& model)
   im.wallTorque.assign(6 * n, Vec3::Zero());
   im.wallNormal.assign(6 * n, 0.0);
   im.wallMask.assign(n, 0);
+  im.wallStiffness.assign(6 * n, 0.0);
+  im.wallElastic.assign(6 * n, 0.0);
+  im.undampedForce.assign(n, Vec3::Zero());
   im.contactForceMagnitude.assign(n, 0.0);
   im.unbalancedForce.assign(n, 0.0);
   const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
@@ -527,8 +533,15 @@ void Simulation::computeForces(bool incrementHistory)
     im.pairNormal[k] = fn;
   }
 
-  // 2. Walls, per particle.
+  // 2. Walls, per particle. During a press test the walls are frictionless (the usual
+  // choice for servo-controlled faces and platens: a face must be free to follow the
+  // specimen's lateral expansion without shear from it).
   const long count = static_cast<long>(n);
+  ContactModel wallModel = cm;
+  if (model_.test.settings.mode != TestMode::Off) {
+    wallModel.friction = 0.0;
+    wallModel.rollingFriction = 0.0;
+  }
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long i = 0; i < count; ++i) {
     std::uint8_t mask = 0;
@@ -544,6 +557,8 @@ void Simulation::computeForces(bool incrementHistory)
           im.wallForce[slot].setZero();
           im.wallTorque[slot].setZero();
           im.wallNormal[slot] = 0.0;
+          im.wallStiffness[slot] = 0.0;
+          im.wallElastic[slot] = 0.0;
           im.wallSpring[slot].setZero();
           if (rolling) {
             im.wallRolling[slot].setZero();
@@ -560,18 +575,20 @@ void Simulation::computeForces(bool incrementHistory)
         p.velocity[i] - wallVelocity + p.angularVelocity[i].cross(arm * normal);
       const double approachSpeed =
         (relativeVelocity + predict * im.inverseMass[i] * p.force[i]).dot(normal);
-      const PairProperties pair = wallProperties(cm, p.radius[i], massOf(i), planar, slab);
-      const double fn = normalForce(cm, pair, overlap, approachSpeed);
+      const PairProperties pair = wallProperties(wallModel, p.radius[i], massOf(i), planar, slab);
+      const double fn = normalForce(wallModel, pair, overlap, approachSpeed);
       const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-      const Vec3 ft = tangentialForce(cm, pair, overlap, fn, normal, slip, im.wallSpring[slot]);
+      const Vec3 ft = tangentialForce(wallModel, pair, overlap, fn, normal, slip, im.wallSpring[slot]);
       Vec3 torque = arm * normal.cross(ft);
       if (rolling) {
         const Vec3 roll = inPlane(p.angularVelocity[i], normal) * dt;
-        torque += rollingTorque(cm, pair, overlap, fn, normal, roll, im.wallRolling[slot]);
+        torque += rollingTorque(wallModel, pair, overlap, fn, normal, roll, im.wallRolling[slot]);
       }
       im.wallForce[slot] = -fn * normal + ft;
       im.wallTorque[slot] = torque;
       im.wallNormal[slot] = fn;
+      im.wallStiffness[slot] = normalStiffness(wallModel, pair, overlap);
+      im.wallElastic[slot] = normalForce(wallModel, pair, overlap, 0.0); // no viscous part
     }
     im.wallMask[i] = mask;
   }
@@ -629,6 +646,7 @@ void Simulation::computeForces(bool incrementHistory)
       torque.y() = 0.0;
     }
     im.contactForceMagnitude[i] = contactMagnitude;
+    im.undampedForce[i] = force;
     Vec3 damped = force;
     Vec3 dampedTorque = torque;
     if (alpha > 0.0) {
@@ -645,12 +663,21 @@ void Simulation::computeForces(bool incrementHistory)
   // 4. Wall reactions: serial sum in slot order (deterministic).
   for (int w = 0; w < 6; ++w) {
     Vec3 reaction = Vec3::Zero();
+    double stiffness = 0.0;
+    double elastic = 0.0;
+    std::int64_t contacts = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (im.wallMask[i] & (1u << w)) {
         reaction -= im.wallForce[i * 6 + w];
+        stiffness += im.wallStiffness[i * 6 + w];
+        elastic += im.wallElastic[i * 6 + w];
+        ++contacts;
       }
     }
+    model_.walls[w].elasticForce = elastic;
     model_.walls[w].force = reaction;
+    model_.walls[w].contactStiffness = stiffness;
+    model_.walls[w].contacts = contacts;
   }
 }
 
@@ -772,6 +799,273 @@ void Simulation::computeBondForces(bool incrementState)
 }
 
 // ---------------------------------------------------------------------------------------
+// The virtual press
+
+std::array<double, 3> Simulation::specimenLengths() const
+{
+  // Between the walls where they are active (or driven, as the tension platen), else the
+  // extent of the particles.
+  const Particles& p = model_.particles;
+  const LoadTestState& t = model_.test;
+  std::array<double, 3> length{ { 0.0, 0.0, 0.0 } };
+  for (int k = 0; k < 3; ++k) {
+    const Wall& low = model_.walls[2 * k];
+    const Wall& high = model_.walls[2 * k + 1];
+    const bool platenAxis = t.settings.mode != TestMode::Off && k == t.settings.axis;
+    if (low.active || high.active || platenAxis) {
+      length[k] = high.position - low.position;
+    } else if (model_.domain.section2D && k == 2) {
+      length[k] = model_.domain.slabThickness();
+    } else {
+      double lo = std::numeric_limits<double>::max();
+      double hi = -lo;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        lo = std::min(lo, p.position[i][k] - p.radius[i]);
+        hi = std::max(hi, p.position[i][k] + p.radius[i]);
+      }
+      length[k] = p.empty() ? model_.domain.size[k] : hi - lo;
+    }
+  }
+  return length;
+}
+
+void Simulation::controlWalls()
+{
+  LoadTestState& t = model_.test;
+  const LoadTestSettings& s = t.settings;
+  if (s.mode == TestMode::Off) {
+    return;
+  }
+  const int a = s.axis;
+  const double dt = timestep_;
+  if (t.stage == TestStage::Done || t.stage == TestStage::Idle) {
+    for (Wall& w : model_.walls) {
+      w.velocity = 0.0;
+    }
+    Particles& p = model_.particles;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.flags[i] & FlagAttachedHigh) {
+        p.velocity[i].setZero();
+      }
+    }
+    return;
+  }
+  const std::array<double, 3> length = specimenLengths();
+  const Particles& p = model_.particles;
+  const double rmin = p.empty() ? 0.0 : *std::min_element(p.radius.begin(), p.radius.end());
+  // A servo wall never moves more than 0.2 % of the smallest radius per step: fast enough
+  // to close a gap of a radius in a few hundred steps, slow enough that the viscous part
+  // of the contact forces does not dominate what the servo measures.
+  const double maxSpeed = 0.002 * rmin / dt;
+  for (Wall& w : model_.walls) {
+    const bool servo = w.active &&
+      (t.stage == TestStage::Consolidate || (s.mode == TestMode::Triaxial && w.axis != a));
+    if (servo) {
+      const int b = (w.axis + 1) % 3;
+      const int c = (w.axis + 2) % 3;
+      const double area = length[b] * length[c];
+      // The servo controls the elastic push: the viscous part of the wall forces follows
+      // the wall's own speed, and feeding it back makes the servo chatter.
+      const double measured = w.elasticForce / area; // Pa, compression positive
+      double outward = -maxSpeed;                                // no contact: close in
+      if (w.contactStiffness > 0.0) {
+        // u = G (sigma - sigma_target), G = alpha A / (kn_wall Nc dt) (PHYSICS.md s.4).
+        const double gain = s.servoAlpha * area / (w.contactStiffness * dt);
+        outward = gain * (measured - s.confiningStress);
+      }
+      outward = std::max(-maxSpeed, std::min(maxSpeed, outward));
+      w.velocity = w.side == 0 ? -outward : outward;
+    } else if (t.stage == TestStage::Shear && w.axis == a) {
+      const double platenSpeed = s.strainRate * t.initialLength[a]; // m/s
+      if (w.side == 1) {
+        w.velocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
+      } else {
+        w.velocity = 0.0;
+      }
+    } else {
+      w.velocity = 0.0;
+    }
+  }
+}
+
+TestMeasurements Simulation::measurements() const
+{
+  const Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const LoadTestState& t = model_.test;
+  const LoadTestSettings& s = t.settings;
+  const bool planar = d.section2D;
+  TestMeasurements m;
+  const std::array<double, 3> length = specimenLengths();
+  const double volume = length[0] * length[1] * length[2];
+  for (int k = 0; k < 3; ++k) {
+    const double l0 = t.initialLength[k] > 0.0 ? t.initialLength[k] : d.size[k];
+    m.strain[k] = (planar && k == 2) ? 0.0 : (l0 - length[k]) / l0;
+  }
+  const double v0 = t.initialVolume > 0.0 ? t.initialVolume
+                                           : d.size.x() * d.size.y() * d.size.z();
+  m.volumetricStrain = 1.0 - volume / v0;
+  // Face stresses from the wall reactions over the current face areas.
+  for (int w = 0; w < 6; ++w) {
+    const Wall& wall = model_.walls[w];
+    const int b = (wall.axis + 1) % 3;
+    const int c = (wall.axis + 2) % 3;
+    const double area = length[b] * length[c];
+    m.faceStress[w] = wall.active && area > 0.0 ? -wall.force.dot(wall.normal()) / area : 0.0;
+  }
+  // Love-Weber: sigma = -(1/V) sum over particles and their contacts of (x_c - x_p) (x) f_c.
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < im.pairI.size(); ++k) {
+    if (im.pairMagnitude[k] == 0.0) {
+      continue;
+    }
+    const std::size_t i = im.pairI[k];
+    const std::size_t j = im.pairJ[k];
+    const Vec3 branch = separation(d, p.position[i], p.position[j]);
+    sum += branch * im.pairForce[k].transpose(); // arms add up to the branch
+  }
+  for (std::size_t k = 0; k < im.bondI.size(); ++k) {
+    if (model_.bonds.broken(k)) {
+      continue;
+    }
+    const Vec3 branch = separation(d, p.position[im.bondI[k]], p.position[im.bondJ[k]]);
+    sum += branch * im.bondForce[k].transpose();
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int w = 0; w < 6; ++w) {
+      if (im.wallMask[i] & (1u << w)) {
+        const Wall& wall = model_.walls[w];
+        const double side = wall.side == 0 ? 1.0 : -1.0;
+        const double distance = (p.position[i][wall.axis] - wall.position) * side;
+        const Vec3 arm = -wall.normal() * distance; // centre to contact point
+        sum += arm * im.wallForce[i * 6 + w].transpose();
+      }
+    }
+  }
+  const Eigen::Matrix3d sigma = -(sum + sum.transpose()) / (2.0 * volume);
+  m.stressTensor = { { sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(0, 1), sigma(1, 2), sigma(2, 0) } };
+  m.meanStress = planar ? 0.5 * (sigma(0, 0) + sigma(1, 1)) : sigma.trace() / 3.0;
+
+  const int a = s.axis;
+  if (s.mode == TestMode::Tension) {
+    // The pull on the particles attached to the high platen, over the cross-section.
+    double pull = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.flags[i] & FlagAttachedHigh) {
+        pull += (im.undampedForce[i] - p.mass[i] * model_.gravity)[a];
+      }
+    }
+    const double area = length[(a + 1) % 3] * length[(a + 2) % 3];
+    m.axialStress = area > 0.0 ? pull / area : 0.0; // negative in tension
+  } else {
+    m.axialStress = 0.5 * (m.faceStress[2 * a] + m.faceStress[2 * a + 1]);
+  }
+  double lateral = 0.0;
+  int sides = 0;
+  for (int w = 0; w < 6; ++w) {
+    if (model_.walls[w].active && model_.walls[w].axis != a) {
+      lateral += m.faceStress[w];
+      ++sides;
+    }
+  }
+  m.lateralStress = sides > 0 ? lateral / sides : 0.0;
+  m.deviatorStress = m.axialStress - m.lateralStress;
+
+  // Inertial number I = strain rate x mean diameter x sqrt(density / mean stress).
+  double meanRadius = 0.0;
+  for (double r : p.radius) {
+    meanRadius += r;
+  }
+  meanRadius = p.empty() ? 0.0 : meanRadius / static_cast<double>(p.size());
+  const double diameter = 2.0 * meanRadius;
+  const double rho = model_.material.density;
+  const double pressure = std::abs(m.meanStress);
+  if (pressure > 0.0 && s.mode != TestMode::Off) {
+    m.inertialNumber = s.strainRate * diameter * std::sqrt(rho / pressure);
+  }
+  const double reference =
+    (s.mode == TestMode::Triaxial || s.mode == TestMode::Isotropic) ? s.confiningStress : pressure;
+  if (reference > 0.0 && diameter > 0.0) {
+    m.suggestedStrainRate = 1e-4 / (diameter * std::sqrt(rho / reference));
+  }
+  return m;
+}
+
+void Simulation::sampleLoadTest()
+{
+  LoadTestState& t = model_.test;
+  const LoadTestSettings& s = t.settings;
+  if (s.mode == TestMode::Off || t.stage == TestStage::Done) {
+    return;
+  }
+  if (++t.stepsSinceSample < s.sampleInterval) {
+    return;
+  }
+  t.stepsSinceSample = 0;
+  const TestMeasurements m = measurements();
+  const Diagnostics d = diagnostics();
+  const BondCounts bonds = countBonds(model_.bonds);
+  std::array<double, HistoryColumnCount> row{};
+  std::size_t c = 0;
+  row[c++] = model_.clock.time;
+  row[c++] = static_cast<double>(model_.clock.step);
+  for (int k = 0; k < 3; ++k) {
+    row[c++] = m.strain[k];
+  }
+  row[c++] = m.volumetricStrain;
+  for (double f : m.faceStress) {
+    row[c++] = f;
+  }
+  for (double v : m.stressTensor) {
+    row[c++] = v;
+  }
+  row[c++] = m.axialStress;
+  row[c++] = m.lateralStress;
+  row[c++] = m.deviatorStress;
+  row[c++] = static_cast<double>(bonds.tension);
+  row[c++] = static_cast<double>(bonds.shear);
+  row[c++] = d.unbalancedForceRatio;
+  row[c++] = m.inertialNumber;
+  row[c++] = static_cast<double>(t.stage);
+  row[c++] = m.meanStress;
+  t.history.push_back(row);
+  // Peaks: in tension the strength is the largest pull (most negative axial stress).
+  const double axialMagnitude = s.mode == TestMode::Tension ? -m.axialStress : m.axialStress;
+  if (t.stage == TestStage::Shear) {
+    t.peakStress = std::max(t.peakStress, axialMagnitude);
+    t.peakDeviator = std::max(t.peakDeviator, m.deviatorStress);
+  }
+
+  const int a = s.axis;
+  if (t.stage == TestStage::Consolidate) {
+    bool settled = true;
+    for (int w = 0; w < 6; ++w) {
+      if (model_.walls[w].active) {
+        settled = settled &&
+          std::abs(m.faceStress[w] - s.confiningStress) <= s.settleTolerance * s.confiningStress;
+      }
+    }
+    t.settledChecks = settled && d.unbalancedForceRatio < 0.01 ? t.settledChecks + 1 : 0;
+    if (t.settledChecks >= 3) {
+      if (s.mode == TestMode::Isotropic) {
+        t.stage = TestStage::Done;
+      } else {
+        // Shear: strains count from here.
+        t.stage = TestStage::Shear;
+        t.initialLength = specimenLengths();
+        t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
+      }
+    }
+  } else if (t.stage == TestStage::Shear) {
+    const double axialStrain = s.mode == TestMode::Tension ? -m.strain[a] : m.strain[a];
+    if (axialStrain >= s.maxStrain) {
+      t.stage = TestStage::Done;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------
 // Stepping
 
 void Simulation::step()
@@ -812,6 +1106,7 @@ void Simulation::step()
       }
     }
   }
+  controlWalls();
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
   }
@@ -838,6 +1133,7 @@ void Simulation::step()
   }
   model_.clock.step += 1;
   model_.clock.time += dt;
+  sampleLoadTest();
 }
 
 void Simulation::advance(std::int64_t steps)
@@ -942,8 +1238,11 @@ void Simulation::checkStability(const char* when) const
     kinetic += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
       0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm();
   }
+  // Moving walls and platens do work on the specimen: during a test the energy check
+  // has a source, so only non-finite values and escapes are checked then.
+  const bool testRunning = model_.test.settings.mode != TestMode::Off;
   const double limit = 2.0 * initialAvailableEnergy_ + 1e-300;
-  if (kinetic > limit) {
+  if (!testRunning && kinetic > limit) {
     throw InstabilityError(std::string("The run went unstable ") + when + ": kinetic energy " +
       formatValue(kinetic) + " J exceeds twice the energy available at the start (" +
       formatValue(initialAvailableEnergy_) + " J) with no source of energy (timestep " +

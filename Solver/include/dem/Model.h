@@ -10,6 +10,7 @@
 #pragma once
 
 #include "dem/Bonds.h"
+#include "dem/LoadTest.h"
 #include "dem/Random.h"
 #include "dem/SolverState.h"
 
@@ -53,6 +54,8 @@ struct Material {
 enum ParticleFlag : std::uint32_t {
   FlagFixed = 1u << 0,    ///< kinematic: forces do not move it; it keeps its given velocity (at rest by default)
   FlagFineZone = 1u << 1, ///< radius was drawn from the fine-zone range
+  FlagAttachedLow = 1u << 2,  ///< tension test: attached to the low platen (kinematic)
+  FlagAttachedHigh = 1u << 3, ///< tension test: attached to the high platen (kinematic)
 };
 
 /// Particle state, structure of arrays. All vectors have the same length.
@@ -100,6 +103,7 @@ struct Model {
   std::vector<Wall> walls;          ///< the box walls (empty until the solver first runs)
   ContactHistory contacts;          ///< tangential and rolling history of live contacts
   Bonds bonds;                      ///< cement bonds, intact and broken
+  LoadTestState test;               ///< the virtual press: mode, stage, history
   Clock clock;
   Random random{ 1 };               ///< the model's random stream (pack placement, strength draws)
   std::int64_t nextId = 0;          ///< next global id to hand out

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "dem/ContactLaws.h"
+#include "dem/LoadTest.h"
 #include "dem/Model.h"
 
 #include <cstdint>
@@ -83,9 +84,16 @@ public:
   /// Writes the live contact history into model.contacts (done after every advance()).
   void exportContacts();
 
+  /// The press measurements now: strains, face stresses, Love-Weber stress tensor,
+  /// axial/lateral/deviator stress, inertial number, suggested strain rate.
+  TestMeasurements measurements() const;
+
 private:
   void rebuildNeighbours(bool importModelHistory);
   void buildBondLists();
+  void controlWalls();
+  void sampleLoadTest();
+  std::array<double, 3> specimenLengths() const;
   void computeBondForces(bool incrementState);
   bool neighboursStale() const;
   void computeForces(bool incrementHistory);

@@ -37,6 +37,9 @@ struct Wall {
   double velocity = 0.0;   ///< m/s, along the axis
   bool active = true;      ///< enforced
   Vec3 force{ 0.0, 0.0, 0.0 }; ///< N, reaction: total force the particles exert on the wall
+  double contactStiffness = 0.0; ///< N/m, sum of the normal stiffness of its contacts (servo gain)
+  double elasticForce = 0.0;     ///< N, elastic part of the particles' normal push (what the servo controls)
+  std::int64_t contacts = 0;     ///< number of particles touching it
 
   /// Unit normal pointing into the box.
   Vec3 normal() const

@@ -1,0 +1,81 @@
+// RockDEM engine: the virtual press (reference guide "Loading the model", "Running a
+// triaxial test", "How fast to load"; PHYSICS.md section 4).
+//
+// The load-test state machine lives in the Model (so a saved run resumes mid-test) and
+// is driven by the Simulation each step: it sets the wall velocities (platen at the
+// strain rate, servo-controlled faces), and every Sample Interval steps it appends a row
+// to the test history. Stresses are compression positive (geomechanics convention),
+// strains are shortening positive. SI units: Pa, s, 1/s.
+#pragma once
+
+#include "dem/SolverState.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dem {
+
+struct Model;
+
+enum class TestMode : std::uint8_t { Off = 0, Compression = 1, Tension = 2, Triaxial = 3, Isotropic = 4 };
+enum class TestStage : std::uint8_t { Idle = 0, Consolidate = 1, Shear = 2, Done = 3 };
+
+/// The guide's words for modes and stages ("Off", "Compression", ...; "consolidate", "shear").
+const char* modeName(TestMode mode);
+const char* stageName(TestStage stage);
+
+/// Press parameters.
+struct LoadTestSettings {
+  TestMode mode = TestMode::Off;
+  int axis = 2;                  ///< platen axis: 0 X, 1 Y, 2 Z
+  double confiningStress = 1e6;  ///< Pa, Triaxial and Isotropic (> 0 there)
+  double strainRate = 0.1;       ///< 1/s, fraction of the starting length per second (> 0)
+  double maxStrain = 0.02;       ///< the shearing stage stops at this axial strain, (0, 1)
+  double servoAlpha = 0.5;       ///< servo aggressiveness, (0, 1]
+  std::int64_t sampleInterval = 100; ///< physics steps between history rows, >= 1
+  double settleTolerance = 0.01; ///< servo faces within this relative error count as settled
+};
+
+/// Names of the history columns, in order (units in the names).
+const std::vector<std::string>& historyColumns();
+constexpr std::size_t HistoryColumnCount = 27;
+
+/// State of a test in progress (part of the Model).
+struct LoadTestState {
+  LoadTestSettings settings;
+  TestStage stage = TestStage::Idle;
+  std::array<double, 3> initialLength{ { 0.0, 0.0, 0.0 } }; ///< m, specimen size at the start
+  double initialVolume = 0.0;      ///< m^3
+  double peakStress = 0.0;         ///< Pa, largest axial stress so far
+  double peakDeviator = 0.0;       ///< Pa, largest axial minus lateral stress so far
+  std::int64_t settledChecks = 0;  ///< consecutive samples with every servo face settled
+  std::int64_t stepsSinceSample = 0;
+  std::vector<std::array<double, HistoryColumnCount>> history; ///< rows, see historyColumns()
+};
+
+/// Latest measurements (also the last history row).
+struct TestMeasurements {
+  std::array<double, 3> strain{ { 0, 0, 0 } };       ///< -, shortening positive, per axis
+  double volumetricStrain = 0.0;                      ///< -, sum of the axial strains
+  std::array<double, 6> faceStress{ { 0, 0, 0, 0, 0, 0 } }; ///< Pa, compression positive (x-, x+, y-, y+, z-, z+)
+  std::array<double, 6> stressTensor{ { 0, 0, 0, 0, 0, 0 } }; ///< Pa, Love-Weber xx yy zz xy yz zx, compression positive
+  double axialStress = 0.0;    ///< Pa, mean of the two platen faces
+  double lateralStress = 0.0;  ///< Pa, mean of the side faces (0 when unconfined)
+  double deviatorStress = 0.0; ///< Pa, axial - lateral
+  double meanStress = 0.0;     ///< Pa
+  double inertialNumber = 0.0; ///< -, strain rate x mean diameter x sqrt(density / mean stress)
+  double suggestedStrainRate = 0.0; ///< 1/s, the rate giving an inertial number of 1e-4
+};
+
+/// Throws InputError naming the parameter for an invalid setting (for the given mode).
+void validate(const LoadTestSettings& settings);
+
+/// Starts a test on the model: records the specimen size, sets up the walls for the
+/// mode (Compression and Tension remove the side walls; Tension attaches the particles
+/// next to each platen to it) and the first stage. Mode Off restores the six walls at
+/// the current box and ends any test.
+void startLoadTest(Model& model, const LoadTestSettings& settings);
+
+} // namespace dem

@@ -1,0 +1,141 @@
+#include "dem/LoadTest.h"
+
+#include "dem/Errors.h"
+#include "dem/Model.h"
+#include "dem/Simulation.h"
+
+#include <algorithm>
+
+namespace dem {
+
+const char* modeName(TestMode mode)
+{
+  switch (mode) {
+    case TestMode::Off: return "Off";
+    case TestMode::Compression: return "Compression";
+    case TestMode::Tension: return "Tension";
+    case TestMode::Triaxial: return "Triaxial";
+    case TestMode::Isotropic: return "Isotropic";
+  }
+  return "?";
+}
+
+const char* stageName(TestStage stage)
+{
+  switch (stage) {
+    case TestStage::Idle: return "idle";
+    case TestStage::Consolidate: return "consolidate";
+    case TestStage::Shear: return "shear";
+    case TestStage::Done: return "done";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& historyColumns()
+{
+  static const std::vector<std::string> columns = {
+    "Time (s)", "Step", "Strain X", "Strain Y", "Strain Z", "Volumetric Strain",
+    "Stress X- (Pa)", "Stress X+ (Pa)", "Stress Y- (Pa)", "Stress Y+ (Pa)", "Stress Z- (Pa)",
+    "Stress Z+ (Pa)", "Sigma XX (Pa)", "Sigma YY (Pa)", "Sigma ZZ (Pa)", "Sigma XY (Pa)",
+    "Sigma YZ (Pa)", "Sigma ZX (Pa)", "Axial Stress (Pa)", "Lateral Stress (Pa)",
+    "Deviator Stress (Pa)", "Broken In Tension", "Broken In Shear", "Unbalanced Force Ratio",
+    "Inertial Number", "Stage", "Mean Stress (Pa)"
+  };
+  return columns;
+}
+
+void validate(const LoadTestSettings& s)
+{
+  if (s.axis < 0 || s.axis > 2) {
+    throw InputError("Axis = " + std::to_string(s.axis) + " is out of range: valid values are X, Y, Z.");
+  }
+  if (s.mode == TestMode::Triaxial || s.mode == TestMode::Isotropic) {
+    requirePositive("Confining Stress", s.confiningStress, "Pa");
+  } else {
+    requireNonNegative("Confining Stress", s.confiningStress, "Pa");
+  }
+  requirePositive("Strain Rate", s.strainRate, "1/s");
+  requireInOpenRange("Max Strain", s.maxStrain, 0.0, 1.0);
+  if (!(s.servoAlpha > 0.0 && s.servoAlpha <= 1.0)) {
+    throw InputError("Servo Alpha = " + formatValue(s.servoAlpha) + " is out of range: valid range is (0, 1].");
+  }
+  if (s.sampleInterval < 1) {
+    throw InputError("Sample Interval = " + std::to_string(s.sampleInterval) +
+                     " is out of range: it must be 1 or more steps.");
+  }
+}
+
+void startLoadTest(Model& model, const LoadTestSettings& settings)
+{
+  validate(settings);
+  LoadTestState& t = model.test;
+  Particles& p = model.particles;
+  // End any previous test: detach particles, restore the box.
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.flags[i] & (FlagAttachedLow | FlagAttachedHigh)) {
+      p.flags[i] &= ~(FlagAttachedLow | FlagAttachedHigh);
+      p.velocity[i].setZero();
+      p.angularVelocity[i].setZero();
+    }
+  }
+  resetWalls(model);
+  t = LoadTestState();
+  t.settings = settings;
+  if (settings.mode == TestMode::Off) {
+    return;
+  }
+  const Domain& d = model.domain;
+  for (int k = 0; k < 3; ++k) {
+    if (d.periodic[k] || (d.section2D && k == 2)) {
+      if (k == settings.axis || settings.mode != TestMode::Compression) {
+        throw InputError(std::string("Mode = ") + modeName(settings.mode) + " needs walls on axis " +
+          "XYZ"[k] + ", but that axis is periodic (or the slab axis of a 2D section).");
+      }
+    }
+  }
+  const int a = settings.axis;
+  for (Wall& w : model.walls) {
+    const bool axial = w.axis == a;
+    switch (settings.mode) {
+      case TestMode::Compression:
+        w.active = w.active && axial; // unconfined: the four side walls are removed
+        break;
+      case TestMode::Tension:
+        w.active = false; // the particles next to each platen are attached to it instead
+        break;
+      default:
+        break;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    t.initialLength[k] = d.size[k];
+  }
+  t.initialVolume = d.size.x() * d.size.y() * (d.section2D ? d.slabThickness() : d.size.z());
+  if (settings.mode == TestMode::Tension) {
+    // Attach the particles within one largest diameter of each platen: they move with it.
+    const double rmax = p.empty() ? 0.0 : *std::max_element(p.radius.begin(), p.radius.end());
+    const double low = model.walls[2 * a].position;
+    const double high = model.walls[2 * a + 1].position;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.position[i][a] - p.radius[i] <= low + 2.0 * rmax) {
+        p.flags[i] |= FlagAttachedLow;
+        p.velocity[i].setZero();
+        p.angularVelocity[i].setZero();
+      } else if (p.position[i][a] + p.radius[i] >= high - 2.0 * rmax) {
+        p.flags[i] |= FlagAttachedHigh;
+        p.velocity[i].setZero();
+        p.velocity[i][a] = settings.strainRate * t.initialLength[a];
+        p.angularVelocity[i].setZero();
+      }
+    }
+    model.walls[2 * a + 1].velocity = settings.strainRate * t.initialLength[a];
+  }
+  t.stage = (settings.mode == TestMode::Triaxial || settings.mode == TestMode::Isotropic)
+    ? TestStage::Consolidate
+    : TestStage::Shear;
+  if (settings.mode == TestMode::Compression) {
+    model.walls[2 * a + 1].velocity = -settings.strainRate * t.initialLength[a];
+  }
+}
+
+} // namespace dem
