@@ -2,6 +2,7 @@
 
 #include "vtkDEMModelConversion.h"
 
+#include "dem/Bonds.h"
 #include "dem/Errors.h"
 #include "dem/Model.h"
 #include "dem/Pack.h"
@@ -29,8 +30,11 @@ constexpr double CheckpointBudgetBytes = 1024.0 * 1024.0 * 1024.0;
 
 double ModelBytes(const dem::Model& m)
 {
+  // Particles, contact history, bonds (ids, 7 doubles, 4 vectors, a byte) and history rows.
   return static_cast<double>(m.particles.size() * dem::Particles::bytesPerParticle() +
-    m.contacts.size() * (2 * sizeof(std::int64_t) + 2 * sizeof(dem::Vec3)));
+    m.contacts.size() * (2 * sizeof(std::int64_t) + 2 * sizeof(dem::Vec3)) +
+    m.bonds.size() * (2 * sizeof(std::int64_t) + 7 * sizeof(double) + 4 * sizeof(dem::Vec3) + 1) +
+    m.test.history.size() * dem::HistoryColumnCount * sizeof(double));
 }
 }
 
@@ -313,6 +317,12 @@ int vtkDEMLoadTest::RequestData(
   this->CriticalTimestep = in.Simulation->criticalTimestep();
   this->Timestep = in.Simulation->timestep();
   this->CurrentPorosity = dem::currentPorosity(in.Model);
+  const dem::BondCounts bondCounts = dem::countBonds(in.Model.bonds);
+  this->NumberOfBonds = static_cast<vtkIdType>(bondCounts.installed);
+  this->NumberOfBrokenBonds = static_cast<vtkIdType>(bondCounts.broken);
+  this->Damage = bondCounts.damage();
+  this->BrokenInTension = static_cast<vtkIdType>(bondCounts.tension);
+  this->BrokenInShear = static_cast<vtkIdType>(bondCounts.shear);
   this->KineticEnergy = d.kineticEnergy;
   this->NumberOfContacts = static_cast<vtkIdType>(d.contacts);
   this->UnbalancedForceRatio = d.unbalancedForceRatio;

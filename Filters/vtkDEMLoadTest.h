@@ -115,6 +115,15 @@ public:
   const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial"
   ///@}
 
+  ///@{
+  /// Read-only bond counts of the current model (reference guide "Reading damage").
+  vtkGetMacro(NumberOfBonds, vtkIdType);       ///< Bonds: installed
+  vtkGetMacro(NumberOfBrokenBonds, vtkIdType); ///< Broken Bonds
+  vtkGetMacro(Damage, double);                 ///< broken / installed, 0-1
+  vtkGetMacro(BrokenInTension, vtkIdType);
+  vtkGetMacro(BrokenInShear, vtkIdType);
+  ///@}
+
 protected:
   vtkDEMLoadTest();
   ~vtkDEMLoadTest() override;
@@ -147,6 +156,11 @@ protected:
   // Read-only values are results, not parameters: setting them must not call Modified().
   std::string StatusText;
   std::string SolverPathText;
+  vtkIdType NumberOfBonds = 0;
+  vtkIdType NumberOfBrokenBonds = 0;
+  double Damage = 0.0;
+  vtkIdType BrokenInTension = 0;
+  vtkIdType BrokenInShear = 0;
 
 private:
   vtkDEMLoadTest(const vtkDEMLoadTest&) = delete;

@@ -22,7 +22,10 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
+#include <limits>
+#include <cmath>
 #include <cstring>
+#include <unordered_map>
 
 namespace rockdem
 {
@@ -139,6 +142,77 @@ void ReadScalars(vtkPointData* pd, const char* name, vtkIdType n, std::vector<do
     Missing(std::string("double array '") + name + "'");
   }
   out.assign(a->GetPointer(0), a->GetPointer(0) + n);
+}
+} // namespace
+
+namespace
+{
+// The press: settings and state as two small arrays, the history as one array with a
+// tuple per row (HistoryColumnCount components). Exact doubles: lossless.
+void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
+{
+  const dem::LoadTestSettings& s = t.settings;
+  AddField(fd, "TestSettings", { static_cast<double>(s.mode), static_cast<double>(s.axis),
+    s.confiningStress, s.strainRate, s.maxStrain, s.servoAlpha, static_cast<double>(s.sampleInterval),
+    s.settleTolerance });
+  AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
+    t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
+    static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample) });
+  vtkNew<vtkDoubleArray> history;
+  history->SetName("TestHistory");
+  history->SetNumberOfComponents(static_cast<int>(dem::HistoryColumnCount));
+  history->SetNumberOfTuples(static_cast<vtkIdType>(t.history.size()));
+  for (std::size_t r = 0; r < t.history.size(); ++r)
+  {
+    history->SetTypedTuple(static_cast<vtkIdType>(r), t.history[r].data());
+  }
+  fd->AddArray(history);
+}
+
+void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
+{
+  auto value = [&](const char* name, int k, int n) { return Field(fd, name, k, n); };
+  dem::LoadTestSettings& s = t.settings;
+  const double mode = value("TestSettings", 0, 8);
+  if (!(mode >= 0 && mode <= 4))
+  {
+    throw dem::InputError("RockDEM model array 'TestSettings' has an unknown mode " +
+      dem::formatValue(mode) + ".");
+  }
+  s.mode = static_cast<dem::TestMode>(static_cast<int>(mode));
+  s.axis = static_cast<int>(value("TestSettings", 1, 8));
+  s.confiningStress = value("TestSettings", 2, 8);
+  s.strainRate = value("TestSettings", 3, 8);
+  s.maxStrain = value("TestSettings", 4, 8);
+  s.servoAlpha = value("TestSettings", 5, 8);
+  s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 8));
+  s.settleTolerance = value("TestSettings", 7, 8);
+  const double stage = value("TestState", 0, 9);
+  if (!(stage >= 0 && stage <= 3))
+  {
+    throw dem::InputError("RockDEM model array 'TestState' has an unknown stage " +
+      dem::formatValue(stage) + ".");
+  }
+  t.stage = static_cast<dem::TestStage>(static_cast<int>(stage));
+  for (int k = 0; k < 3; ++k)
+  {
+    t.initialLength[k] = value("TestState", 1 + k, 9);
+  }
+  t.initialVolume = value("TestState", 4, 9);
+  t.peakStress = value("TestState", 5, 9);
+  t.peakDeviator = value("TestState", 6, 9);
+  t.settledChecks = static_cast<std::int64_t>(value("TestState", 7, 9));
+  t.stepsSinceSample = static_cast<std::int64_t>(value("TestState", 8, 9));
+  auto* history = vtkDoubleArray::SafeDownCast(fd->GetArray("TestHistory"));
+  if (!history || history->GetNumberOfComponents() != static_cast<int>(dem::HistoryColumnCount))
+  {
+    Missing("array 'TestHistory' (" + std::to_string(dem::HistoryColumnCount) + " columns)");
+  }
+  t.history.resize(static_cast<std::size_t>(history->GetNumberOfTuples()));
+  for (std::size_t r = 0; r < t.history.size(); ++r)
+  {
+    history->GetTypedTuple(static_cast<vtkIdType>(r), t.history[r].data());
+  }
 }
 } // namespace
 
@@ -264,6 +338,13 @@ void WallsToPolyData(const dem::Model& model, vtkPolyData* output)
   }
   output->SetPoints(points);
   output->SetPolys(quads);
+  // The corners have a drawn size of zero: without a Radius array a Point Gaussian
+  // representation of the model would draw them as spheres of the default radius (1 m).
+  vtkNew<vtkDoubleArray> zeroRadius;
+  zeroRadius->SetName("Radius");
+  zeroRadius->SetNumberOfTuples(points->GetNumberOfPoints());
+  zeroRadius->FillValue(std::numeric_limits<double>::quiet_NaN());
+  output->GetPointData()->AddArray(zeroRadius);
   for (vtkDataArray* array : std::initializer_list<vtkDataArray*>{ axis, side, position, velocity, force, stress })
   {
     output->GetCellData()->AddArray(array);
@@ -288,6 +369,119 @@ void ContactsToPolyData(const dem::Model& model, vtkPolyData* output)
   fd->AddArray(idB);
   fd->AddArray(VectorArray("ShearSpring", h.shearSpring));
   fd->AddArray(VectorArray("RollingSpring", h.rollingSpring));
+}
+
+void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
+{
+  output->Initialize();
+  const dem::Bonds& b = model.bonds;
+  const dem::Particles& p = model.particles;
+  const dem::Domain& d = model.domain;
+  const auto n = static_cast<vtkIdType>(b.size());
+
+  std::unordered_map<std::int64_t, std::size_t> slotOf;
+  slotOf.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    slotOf.emplace(p.id[i], i);
+  }
+  // Two points per bond: the centre of A and A + the minimum-image branch to B, so that
+  // a bond across a periodic seam is drawn short and never spans the box.
+  vtkNew<vtkDoubleArray> xyz;
+  xyz->SetNumberOfComponents(3);
+  xyz->SetNumberOfTuples(2 * n);
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    const auto ia = slotOf.find(b.idA[c]);
+    const auto ib = slotOf.find(b.idB[c]);
+    // A bond whose particle is gone (never produced by the engine) is drawn as a point.
+    const dem::Vec3 xa = ia != slotOf.end() ? p.position[ia->second]
+      : ib != slotOf.end()                  ? p.position[ib->second]
+                                            : d.origin;
+    dem::Vec3 branch = dem::Vec3::Zero();
+    if (ia != slotOf.end() && ib != slotOf.end())
+    {
+      branch = p.position[ib->second] - xa;
+      for (int k = 0; k < 3; ++k)
+      {
+        if (d.periodic[k] && d.size[k] > 0.0)
+        {
+          branch[k] -= d.size[k] * std::round(branch[k] / d.size[k]);
+        }
+      }
+    }
+    const dem::Vec3 xb = xa + branch;
+    xyz->SetTuple3(2 * c, xa.x(), xa.y(), xa.z());
+    xyz->SetTuple3(2 * c + 1, xb.x(), xb.y(), xb.z());
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetData(xyz);
+  output->SetPoints(points);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfTuples(n + 1);
+  connectivity->SetNumberOfTuples(2 * n);
+  for (vtkIdType c = 0; c <= n; ++c)
+  {
+    offsets->SetValue(c, 2 * c);
+  }
+  for (vtkIdType k = 0; k < 2 * n; ++k)
+  {
+    connectivity->SetValue(k, k);
+  }
+  vtkNew<vtkCellArray> lines;
+  lines->SetData(offsets, connectivity);
+  output->SetLines(lines);
+
+  // The end points have a drawn size of zero: a Point Gaussian representation of the
+  // model (particles as spheres scaled by Radius) shows nothing for them.
+  vtkNew<vtkDoubleArray> zeroRadius;
+  zeroRadius->SetName("Radius");
+  zeroRadius->SetNumberOfTuples(2 * n);
+  zeroRadius->FillValue(std::numeric_limits<double>::quiet_NaN());
+  output->GetPointData()->AddArray(zeroRadius);
+
+  vtkCellData* cd = output->GetCellData();
+  vtkNew<vtkTypeInt64Array> idA;
+  idA->SetName("IdA");
+  idA->SetNumberOfTuples(n);
+  std::copy(b.idA.begin(), b.idA.end(), idA->GetPointer(0));
+  cd->AddArray(idA);
+  vtkNew<vtkTypeInt64Array> idB;
+  idB->SetName("IdB");
+  idB->SetNumberOfTuples(n);
+  std::copy(b.idB.begin(), b.idB.end(), idB->GetPointer(0));
+  cd->AddArray(idB);
+  cd->AddArray(ScalarArray("BondRadius", b.radius));
+  cd->AddArray(ScalarArray("NormalStiffness", b.normalStiffness));
+  cd->AddArray(ScalarArray("ShearStiffness", b.shearStiffness));
+  cd->AddArray(ScalarArray("TensileStrength", b.tensileStrength));
+  cd->AddArray(ScalarArray("Cohesion", b.cohesion));
+  cd->AddArray(ScalarArray("FrictionAngle", b.frictionAngle));
+  cd->AddArray(ScalarArray("NormalForce", b.normalForce));
+  cd->AddArray(VectorArray("ShearForce", b.shearForce));
+  cd->AddArray(ScalarArray("TwistingMoment", b.twistingMoment));
+  cd->AddArray(VectorArray("BendingMoment", b.bendingMoment));
+  vtkNew<vtkUnsignedCharArray> mode;
+  mode->SetName("FailureMode");
+  mode->SetNumberOfTuples(n);
+  std::copy(b.failure.begin(), b.failure.end(), mode->GetPointer(0));
+  cd->AddArray(mode);
+  cd->AddArray(ScalarArray("FailureTime", b.failureTime));
+  cd->AddArray(VectorArray("FailurePosition", b.failurePosition));
+  cd->AddArray(VectorArray("FailureNormal", b.failureNormal));
+  // Derived, for Threshold (not read back).
+  vtkNew<vtkUnsignedCharArray> broken;
+  broken->SetName("Broken");
+  broken->SetNumberOfTuples(n);
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    broken->SetValue(c, b.failure[c] != static_cast<std::uint8_t>(dem::BondFailure::Intact) ? 1 : 0);
+  }
+  cd->AddArray(broken);
+  cd->SetActiveScalars("FailureMode");
 }
 
 void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output)
@@ -329,13 +523,17 @@ void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output)
   WallsToPolyData(model, walls);
   vtkNew<vtkPolyData> contacts;
   ContactsToPolyData(model, contacts);
-  output->SetNumberOfBlocks(3);
+  vtkNew<vtkPolyData> bonds;
+  BondsToPolyData(model, bonds);
+  output->SetNumberOfBlocks(4);
   output->SetBlock(0, particles);
   output->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), ParticlesBlockName);
   output->SetBlock(1, walls);
   output->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), WallsBlockName);
   output->SetBlock(2, contacts);
   output->GetMetaData(2u)->Set(vtkCompositeDataSet::NAME(), ContactsBlockName);
+  output->SetBlock(3, bonds);
+  output->GetMetaData(3u)->Set(vtkCompositeDataSet::NAME(), BondsBlockName);
 
   vtkFieldData* fd = output->GetFieldData();
   const dem::Domain& d = model.domain;
@@ -375,10 +573,12 @@ void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output)
     const dem::Wall& wall = model.walls[static_cast<std::size_t>(w)];
     const double state[WallStateComponents] = { static_cast<double>(wall.axis),
       static_cast<double>(wall.side), wall.position, wall.velocity, wall.active ? 1.0 : 0.0,
-      wall.force.x(), wall.force.y(), wall.force.z() };
+      wall.force.x(), wall.force.y(), wall.force.z(), wall.contactStiffness, wall.elasticForce,
+      static_cast<double>(wall.contacts) };
     wallState->SetTuple(w, state);
   }
   fd->AddArray(wallState);
+  LoadTestToFieldData(model.test, fd);
   vtkNew<vtkTypeUInt64Array> rng;
   rng->SetName("RandomState");
   rng->SetNumberOfTuples(4);
@@ -450,6 +650,113 @@ void ContactsFromPolyData(vtkMultiBlockDataSet* input, dem::Model& model)
       std::to_string(h.shearSpring.size()) + " contacts.");
   }
 }
+template <typename ArrayT>
+ArrayT* TypedCellArray(vtkFieldData* fd, const char* name, vtkIdType n, int comps, const char* type)
+{
+  vtkDataArray* found = fd->GetArray(name);
+  if (!found)
+  {
+    Missing(std::string("array '") + name + "' of block 'Bonds'");
+  }
+  if (found->GetNumberOfTuples() != n || found->GetNumberOfComponents() != comps)
+  {
+    throw dem::InputError(std::string("RockDEM model array '") + name + "' of block 'Bonds' has " +
+      std::to_string(found->GetNumberOfTuples()) + " x " +
+      std::to_string(found->GetNumberOfComponents()) + " values; expected " + std::to_string(n) +
+      " x " + std::to_string(comps) + " (one per bond).");
+  }
+  auto* a = ArrayT::SafeDownCast(found);
+  if (!a)
+  {
+    Missing(std::string(type) + " array '" + name + "' of block 'Bonds'");
+  }
+  return a;
+}
+
+void BondsFromPolyData(vtkMultiBlockDataSet* input, dem::Model& model)
+{
+  dem::Bonds& b = model.bonds;
+  b.clear();
+  vtkPolyData* block = NamedBlock(input, BondsBlockName);
+  if (!block)
+  {
+    return; // a model from before cementing: no bonds
+  }
+  vtkFieldData* cd = block->GetCellData();
+  vtkDataArray* first = cd->GetArray("IdA");
+  if (!first)
+  {
+    Missing("array 'IdA' of block 'Bonds'");
+  }
+  const vtkIdType n = first->GetNumberOfTuples();
+  if (block->GetNumberOfCells() != n)
+  {
+    throw dem::InputError("RockDEM model block 'Bonds' has " +
+      std::to_string(block->GetNumberOfCells()) + " lines for " + std::to_string(n) + " bonds.");
+  }
+  auto* idA = TypedCellArray<vtkTypeInt64Array>(cd, "IdA", n, 1, "64-bit integer");
+  auto* idB = TypedCellArray<vtkTypeInt64Array>(cd, "IdB", n, 1, "64-bit integer");
+  auto* mode = TypedCellArray<vtkUnsignedCharArray>(cd, "FailureMode", n, 1, "8-bit unsigned");
+  auto scalars = [&](const char* name, std::vector<double>& out) {
+    auto* a = TypedCellArray<vtkDoubleArray>(cd, name, n, 1, "double");
+    out.assign(a->GetPointer(0), a->GetPointer(0) + n);
+  };
+  auto vectors = [&](const char* name, std::vector<dem::Vec3>& out) {
+    auto* a = TypedCellArray<vtkDoubleArray>(cd, name, n, 3, "double");
+    out.resize(static_cast<std::size_t>(n));
+    if (n > 0)
+    {
+      std::memcpy(out.data(), a->GetPointer(0), static_cast<std::size_t>(n) * sizeof(dem::Vec3));
+    }
+  };
+  b.idA.assign(idA->GetPointer(0), idA->GetPointer(0) + n);
+  b.idB.assign(idB->GetPointer(0), idB->GetPointer(0) + n);
+  scalars("BondRadius", b.radius);
+  scalars("NormalStiffness", b.normalStiffness);
+  scalars("ShearStiffness", b.shearStiffness);
+  scalars("TensileStrength", b.tensileStrength);
+  scalars("Cohesion", b.cohesion);
+  scalars("FrictionAngle", b.frictionAngle);
+  scalars("NormalForce", b.normalForce);
+  vectors("ShearForce", b.shearForce);
+  scalars("TwistingMoment", b.twistingMoment);
+  vectors("BendingMoment", b.bendingMoment);
+  b.failure.assign(mode->GetPointer(0), mode->GetPointer(0) + n);
+  scalars("FailureTime", b.failureTime);
+  vectors("FailurePosition", b.failurePosition);
+  vectors("FailureNormal", b.failureNormal);
+
+  // The engine's invariants: pairs sorted by (IdA, IdB) with IdA < IdB, between
+  // particles of the model, with a known failure mode.
+  std::unordered_map<std::int64_t, int> known;
+  known.reserve(model.particles.size());
+  for (std::int64_t id : model.particles.id)
+  {
+    known.emplace(id, 0);
+  }
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    const std::int64_t a = b.idA[c];
+    const std::int64_t bb = b.idB[c];
+    if (!(a < bb) || (c > 0 && !(b.idA[c - 1] < a || (b.idA[c - 1] == a && b.idB[c - 1] < bb))))
+    {
+      throw dem::InputError("RockDEM model block 'Bonds' is not sorted by (IdA, IdB) with "
+                            "IdA < IdB at bond " + std::to_string(c) + " (" + std::to_string(a) +
+        ", " + std::to_string(bb) + ").");
+    }
+    if (!known.count(a) || !known.count(bb))
+    {
+      throw dem::InputError("RockDEM model block 'Bonds': bond " + std::to_string(c) + " joins " +
+        std::to_string(a) + " and " + std::to_string(bb) +
+        ", but the model has no particle with id " + std::to_string(known.count(a) ? bb : a) + ".");
+    }
+    if (b.failure[c] > static_cast<std::uint8_t>(dem::BondFailure::Inherited))
+    {
+      throw dem::InputError("RockDEM model block 'Bonds': bond " + std::to_string(c) +
+        " has FailureMode " + std::to_string(b.failure[c]) + "; valid values are 0 to 3.");
+    }
+  }
+}
 } // namespace
 
 dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
@@ -513,7 +820,7 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
   if (!wallState || wallState->GetNumberOfComponents() != WallStateComponents ||
     (wallState->GetNumberOfTuples() != 0 && wallState->GetNumberOfTuples() != 6))
   {
-    Missing("array 'WallState' (6 walls x 8 values)");
+    Missing("array 'WallState' (6 walls x 11 values)");
   }
   for (vtkIdType w = 0; w < wallState->GetNumberOfTuples(); ++w)
   {
@@ -526,8 +833,12 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
     wall.velocity = v[3];
     wall.active = v[4] != 0.0;
     wall.force = dem::Vec3(v[5], v[6], v[7]);
+    wall.contactStiffness = v[8];
+    wall.elasticForce = v[9];
+    wall.contacts = static_cast<std::int64_t>(v[10]);
     model.walls.push_back(wall);
   }
+  LoadTestFromFieldData(fd, model.test);
   ContactsFromPolyData(input, model);
 
   const vtkIdType n = particles->GetNumberOfPoints();
@@ -559,6 +870,7 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
   ReadVectors(pd, "Torque", n, p.torque);
   ReadScalars(pd, "Mass", n, p.mass);
   ReadScalars(pd, "Inertia", n, p.inertia);
+  BondsFromPolyData(input, model);
   return model;
 }
 } // namespace rockdem

@@ -10,6 +10,14 @@
  *   Position (m), Velocity (m/s), Force (N) and Stress (Pa, normal force over face area).
  * - block "Contacts": vtkPolyData without points whose field data holds the contact
  *   history needed to resume exactly (IdA, IdB, ShearSpring (m), RollingSpring (N m)).
+ * - block "Bonds": vtkPolyData, one line per bond from the centre of particle A to the
+ *   centre of B (across a periodic seam: to A + the minimum-image branch, so the line
+ *   never spans the box), with cell arrays for the whole bond state: IdA, IdB,
+ *   BondRadius (m), NormalStiffness, ShearStiffness (N/m^3), TensileStrength, Cohesion
+ *   (Pa), FrictionAngle (rad), NormalForce (N), ShearForce (N, 3), TwistingMoment (N m),
+ *   BendingMoment (N m, 3), FailureMode (0 intact, 1 tension, 2 shear, 3 inherited),
+ *   FailureTime (s), FailurePosition (m, 3), FailureNormal (3) and the derived Broken
+ *   (0/1, for Threshold). Absent in models from before bonds: read as no bonds.
  * - field data of the multiblock: the model-level state (domain, material, gravity,
  *   clock, random state, next id), see Documentation/DataModel.md.
  * The round trip Model -> VTK -> Model is lossless: every stored quantity is written in
@@ -31,9 +39,11 @@ namespace rockdem
 constexpr const char* ParticlesBlockName = "Particles";
 constexpr const char* WallsBlockName = "Walls";
 constexpr const char* ContactsBlockName = "Contacts";
+constexpr const char* BondsBlockName = "Bonds";
 /// Values per wall in the field-data array WallState: axis, side, position (m),
-/// velocity (m/s), active, reaction force x, y, z (N).
-constexpr int WallStateComponents = 8;
+/// velocity (m/s), active, reaction force x, y, z (N), contact stiffness (N/m), elastic
+/// push (N), contacts.
+constexpr int WallStateComponents = 11;
 /// Version of the in-memory VTK layout (field data "RockDEMModelVersion").
 constexpr int ModelLayoutVersion = 1;
 
@@ -52,6 +62,9 @@ void WallsToPolyData(const dem::Model& model, vtkPolyData* output);
 
 /// The contact history as field data of an empty polydata, as in the Contacts block.
 void ContactsToPolyData(const dem::Model& model, vtkPolyData* output);
+
+/// The bonds as lines with their state as cell arrays, as in the Bonds block.
+void BondsToPolyData(const dem::Model& model, vtkPolyData* output);
 
 /// The twelve edges of the model box as line cells (the domain outline).
 void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output);

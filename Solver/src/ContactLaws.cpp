@@ -189,17 +189,23 @@ double normalForce(const ContactModel& model, const PairProperties& pair, double
   if (overlap <= 0.0) {
     return 0.0;
   }
+  // Two kinematic bodies (both of infinite mass) have no relative inertia to damp:
+  // their contact is elastic only.
+  const bool damped = std::isfinite(pair.effectiveMass) && model.dampingCoefficient > 0.0;
   double force = 0.0;
   if (model.law == ContactLaw::HertzMindlin) {
     const double K = 4.0 / 3.0 * pair.effectiveModulus * std::sqrt(pair.effectiveRadius);
-    const double elastic = K * overlap * std::sqrt(overlap);
-    const double damping = model.dampingCoefficient * std::sqrt(pair.effectiveMass * K) *
-      std::sqrt(std::sqrt(overlap)) * approachSpeed;
-    force = elastic + damping;
+    force = K * overlap * std::sqrt(overlap);
+    if (damped) {
+      force += model.dampingCoefficient * std::sqrt(pair.effectiveMass * K) *
+        std::sqrt(std::sqrt(overlap)) * approachSpeed;
+    }
   } else {
     const double kn = pair.linearNormalStiffness;
-    force = kn * overlap +
-      2.0 * model.dampingCoefficient * std::sqrt(pair.effectiveMass * kn) * approachSpeed;
+    force = kn * overlap;
+    if (damped) {
+      force += 2.0 * model.dampingCoefficient * std::sqrt(pair.effectiveMass * kn) * approachSpeed;
+    }
   }
   return force > 0.0 ? force : 0.0; // no-tension cut-off
 }

@@ -5,6 +5,7 @@
 #include "dem/Simulation.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace dem {
 
@@ -78,11 +79,20 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
       p.angularVelocity[i].setZero();
     }
   }
-  resetWalls(model);
   t = LoadTestState();
   t.settings = settings;
-  if (settings.mode == TestMode::Off) {
-    return;
+  if (settings.mode == TestMode::Off || model.walls.size() != 6) {
+    // Off restores the box; a model that never ran gets its walls here.
+    resetWalls(model);
+    if (settings.mode == TestMode::Off) {
+      return;
+    }
+  }
+  // Otherwise the walls stay where the previous stage left them (a consolidated
+  // specimen is smaller than the box); they become active again on non-periodic axes.
+  for (Wall& w : model.walls) {
+    w.velocity = 0.0;
+    w.active = !model.domain.periodic[w.axis] && !(model.domain.section2D && w.axis == 2);
   }
   const Domain& d = model.domain;
   for (int k = 0; k < 3; ++k) {
@@ -107,10 +117,24 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
         break;
     }
   }
-  for (int k = 0; k < 3; ++k) {
-    t.initialLength[k] = d.size[k];
+  if ((settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) && !p.empty()) {
+    // The platens start on the specimen: at the extent of the particles along the axis,
+    // so that the strain counts from first contact, not from a gap above a settled pack.
+    double lo = std::numeric_limits<double>::max();
+    double hi = -lo;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      lo = std::min(lo, p.position[i][a] - p.radius[i]);
+      hi = std::max(hi, p.position[i][a] + p.radius[i]);
+    }
+    model.walls[2 * a].position = lo;
+    model.walls[2 * a + 1].position = hi;
   }
-  t.initialVolume = d.size.x() * d.size.y() * (d.section2D ? d.slabThickness() : d.size.z());
+  for (int k = 0; k < 3; ++k) {
+    const Wall& low = model.walls[2 * k];
+    const Wall& high = model.walls[2 * k + 1];
+    t.initialLength[k] = high.position - low.position;
+  }
+  t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
   if (settings.mode == TestMode::Tension) {
     // Attach the particles within one largest diameter of each platen: they move with it.
     const double rmax = p.empty() ? 0.0 : *std::max_element(p.radius.begin(), p.radius.end());

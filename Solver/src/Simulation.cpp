@@ -833,33 +833,29 @@ void Simulation::controlWalls()
 {
   LoadTestState& t = model_.test;
   const LoadTestSettings& s = t.settings;
-  if (s.mode == TestMode::Off) {
+  if (s.mode == TestMode::Off || t.stage == TestStage::Idle) {
     return;
   }
   const int a = s.axis;
   const double dt = timestep_;
-  if (t.stage == TestStage::Done || t.stage == TestStage::Idle) {
-    for (Wall& w : model_.walls) {
-      w.velocity = 0.0;
-    }
-    Particles& p = model_.particles;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if (p.flags[i] & FlagAttachedHigh) {
-        p.velocity[i].setZero();
-      }
-    }
-    return;
-  }
+  // Which faces do what: every face servo-controlled while consolidating (and, for an
+  // isotropic test, for good: it holds the stress once settled); the side faces of a
+  // triaxial test keep the stress through shear and after; the platen advances only
+  // during shear and stops when Max Strain is reached.
+  const bool servoAll = t.stage == TestStage::Consolidate || s.mode == TestMode::Isotropic;
+  const bool servoSides = s.mode == TestMode::Triaxial && t.stage != TestStage::Consolidate;
+  const bool platenMoving = t.stage == TestStage::Shear;
+  const double platenSpeed = s.strainRate * t.initialLength[a]; // m/s
+  const double platenVelocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
   const std::array<double, 3> length = specimenLengths();
-  const Particles& p = model_.particles;
+  Particles& p = model_.particles;
   const double rmin = p.empty() ? 0.0 : *std::min_element(p.radius.begin(), p.radius.end());
   // A servo wall never moves more than 0.2 % of the smallest radius per step: fast enough
   // to close a gap of a radius in a few hundred steps, slow enough that the viscous part
   // of the contact forces does not dominate what the servo measures.
   const double maxSpeed = 0.002 * rmin / dt;
   for (Wall& w : model_.walls) {
-    const bool servo = w.active &&
-      (t.stage == TestStage::Consolidate || (s.mode == TestMode::Triaxial && w.axis != a));
+    const bool servo = w.active && (servoAll || (servoSides && w.axis != a));
     if (servo) {
       const int b = (w.axis + 1) % 3;
       const int c = (w.axis + 2) % 3;
@@ -867,7 +863,7 @@ void Simulation::controlWalls()
       // The servo controls the elastic push: the viscous part of the wall forces follows
       // the wall's own speed, and feeding it back makes the servo chatter.
       const double measured = w.elasticForce / area; // Pa, compression positive
-      double outward = -maxSpeed;                                // no contact: close in
+      double outward = -maxSpeed;                    // no contact: close in
       if (w.contactStiffness > 0.0) {
         // u = G (sigma - sigma_target), G = alpha A / (kn_wall Nc dt) (PHYSICS.md s.4).
         const double gain = s.servoAlpha * area / (w.contactStiffness * dt);
@@ -875,15 +871,19 @@ void Simulation::controlWalls()
       }
       outward = std::max(-maxSpeed, std::min(maxSpeed, outward));
       w.velocity = w.side == 0 ? -outward : outward;
-    } else if (t.stage == TestStage::Shear && w.axis == a) {
-      const double platenSpeed = s.strainRate * t.initialLength[a]; // m/s
-      if (w.side == 1) {
-        w.velocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
-      } else {
-        w.velocity = 0.0;
-      }
+    } else if (platenMoving && w.axis == a && w.side == 1) {
+      w.velocity = platenVelocity;
     } else {
       w.velocity = 0.0;
+    }
+  }
+  if (s.mode == TestMode::Tension) {
+    // The particles attached to the high platen move with it.
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.flags[i] & FlagAttachedHigh) {
+        p.velocity[i].setZero();
+        p.velocity[i][a] = platenMoving ? platenVelocity : 0.0;
+      }
     }
   }
 }
@@ -1267,8 +1267,11 @@ Diagnostics Simulation::diagnostics() const
     out.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
       0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm();
     displacement2 += p.displacement[i].squaredNorm();
-    net += im.unbalancedForce[i];
-    contact += im.contactForceMagnitude[i];
+    if (im.inverseMass[i] > 0.0) {
+      // A fixed (kinematic) particle's net force is a support reaction, not imbalance.
+      net += im.unbalancedForce[i];
+      contact += im.contactForceMagnitude[i];
+    }
   }
   if (!p.empty()) {
     out.rmsDisplacement = std::sqrt(displacement2 / static_cast<double>(p.size()));

@@ -5,7 +5,7 @@ add_executable(rockdem_bench_solver bench_solver.cpp)
 target_link_libraries(rockdem_bench_solver PRIVATE RockDEM::solver)
 target_compile_options(rockdem_bench_solver PRIVATE
   $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic>)
-# Smoke run (well under 10 s): 5000 particles x 100 steps per pack and thread count, and a
+# Smoke run (about 1 s): 2000 particles x 50 steps per pack and thread count, and a
 # two-point sweep on reduced workloads. The real figures come from running it by hand.
 add_test(NAME BenchSolverSmoke COMMAND rockdem_bench_solver --quick)
 set_tests_properties(BenchSolverSmoke PROPERTIES TIMEOUT 60)

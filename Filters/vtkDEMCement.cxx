@@ -1,0 +1,196 @@
+#include "vtkDEMCement.h"
+
+#include "vtkDEMModelConversion.h"
+
+#include "dem/Bonds.h"
+#include "dem/Cement.h"
+#include "dem/Errors.h"
+#include "dem/Model.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <cstdint>
+#include <exception>
+
+vtkStandardNewMacro(vtkDEMCement);
+
+struct vtkDEMCement::vtkInternals
+{
+  bool Valid = false;
+  vtkMTimeType BuildTime = 0; ///< this filter's MTime when the cache was built
+  vtkMTimeType InputTime = 0; ///< the input data's MTime when the cache was built
+  /// The cemented model as VTK data: a pure time change re-outputs it without cementing.
+  vtkSmartPointer<vtkMultiBlockDataSet> Output;
+};
+
+vtkDEMCement::vtkDEMCement()
+  : GapTolerance(0.05)
+  , BondRadiusMultiplier(1.0)
+  , BondModulus(1.0e9)
+  , BondStiffnessRatio(0.4)
+  , BondNormalStiffness(0.0)
+  , TensileStrength(10.0e6)
+  , Cohesion(20.0e6)
+  , FrictionAngle(30.0)
+  , StrengthScatter(0.0)
+  , RandomSeed(1)
+  , NumberOfBonds(0)
+  , NumberOfBrokenBonds(0)
+  , Damage(0.0)
+  , BrokenInTension(0)
+  , BrokenInShear(0)
+  , BondStiffness(0.0)
+  , Internals(new vtkInternals)
+{
+}
+
+vtkDEMCement::~vtkDEMCement()
+{
+  delete this->Internals;
+}
+
+int vtkDEMCement::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
+  return 1;
+}
+
+int vtkDEMCement::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // An instantaneous stage: the upstream times (copied here by the pipeline) are not
+  // ours to publish. ParaView then leaves the upstream stage's times out of the animation.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  return 1;
+}
+
+int vtkDEMCement::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // A stepped upstream model is read at a fixed time, its last time step, so that
+  // changing the animation time never re-runs the stage before this one.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  {
+    const int n = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    const double* steps = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    if (n > 0)
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), steps[n - 1]);
+    }
+  }
+  else
+  {
+    inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+  return 1;
+}
+
+int vtkDEMCement::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
+
+  const bool stale = !in.Valid || this->GetMTime() > in.BuildTime ||
+    (input ? input->GetMTime() : 0) != in.InputTime;
+  if (stale)
+  {
+    in.Valid = false;
+    in.Output = nullptr;
+    try
+    {
+      dem::CementParameters params;
+      params.gapTolerance = this->GapTolerance;
+      params.bondRadiusMultiplier = this->BondRadiusMultiplier;
+      params.bondModulus = this->BondModulus;
+      params.bondStiffnessRatio = this->BondStiffnessRatio;
+      params.bondNormalStiffness = this->BondNormalStiffness;
+      params.tensileStrength = this->TensileStrength;
+      params.cohesion = this->Cohesion;
+      params.frictionAngle = this->FrictionAngle;
+      params.strengthScatter = this->StrengthScatter;
+      params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
+      dem::validate(params);
+
+      dem::Model model = rockdem::MultiBlockToModel(input);
+      const dem::CementReport report = dem::cement(model, params);
+      const dem::BondCounts counts = dem::countBonds(model.bonds);
+
+      auto cemented = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+      rockdem::ModelToMultiBlock(model, cemented);
+      in.Output = cemented;
+      this->NumberOfBonds = static_cast<vtkIdType>(counts.installed);
+      this->NumberOfBrokenBonds = static_cast<vtkIdType>(counts.broken);
+      this->Damage = counts.damage();
+      this->BrokenInTension = static_cast<vtkIdType>(counts.tension);
+      this->BrokenInShear = static_cast<vtkIdType>(counts.shear);
+      this->BondStiffness = report.bondStiffness;
+      this->LastMessageText = report.summary();
+      in.BuildTime = this->GetMTime();
+      in.InputTime = input ? input->GetMTime() : 0;
+      in.Valid = true;
+      vtkOutputWindowDisplayText(("DEM Cement: " + this->LastMessageText + "\n").c_str());
+    }
+    catch (const std::exception& e)
+    {
+      this->NumberOfBonds = 0;
+      this->NumberOfBrokenBonds = 0;
+      this->Damage = 0.0;
+      this->BrokenInTension = 0;
+      this->BrokenInShear = 0;
+      this->BondStiffness = 0.0;
+      this->LastMessageText = e.what();
+      vtkErrorMacro(<< e.what());
+      output->Initialize();
+      return 0;
+    }
+  }
+
+  output->ShallowCopy(in.Output);
+  // The result does not depend on time: stamp the time asked for, so that the pipeline
+  // sees the request satisfied (the shallow copy carried no upstream time).
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+  }
+  else
+  {
+    output->GetInformation()->Remove(vtkDataObject::DATA_TIME_STEP());
+  }
+  return 1;
+}
+
+void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "GapTolerance: " << this->GapTolerance << "\n";
+  os << indent << "BondRadiusMultiplier: " << this->BondRadiusMultiplier << "\n";
+  os << indent << "BondModulus: " << this->BondModulus << " Pa\n";
+  os << indent << "BondStiffnessRatio: " << this->BondStiffnessRatio << "\n";
+  os << indent << "BondNormalStiffness: " << this->BondNormalStiffness << " N/m^3\n";
+  os << indent << "TensileStrength: " << this->TensileStrength << " Pa\n";
+  os << indent << "Cohesion: " << this->Cohesion << " Pa\n";
+  os << indent << "FrictionAngle: " << this->FrictionAngle << " degrees\n";
+  os << indent << "StrengthScatter: " << this->StrengthScatter << "\n";
+  os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "Bonds: " << this->NumberOfBonds << "\n";
+  os << indent << "BrokenBonds: " << this->NumberOfBrokenBonds << "\n";
+  os << indent << "Damage: " << this->Damage << "\n";
+  os << indent << "BrokenInTension: " << this->BrokenInTension << "\n";
+  os << indent << "BrokenInShear: " << this->BrokenInShear << "\n";
+  os << indent << "BondStiffness: " << this->BondStiffness << " N/m^3\n";
+  os << indent << "LastMessage: " << this->LastMessageText << "\n";
+}

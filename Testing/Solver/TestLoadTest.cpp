@@ -1,0 +1,200 @@
+// The virtual press (reference guide "Loading the model", "Running a triaxial test";
+// PHYSICS.md section 4): servo faces reach and hold the confining stress, the platen
+// loads a cemented specimen to failure, Mode Off restores the box, the history has the
+// documented columns.
+#include "dem/Cement.h"
+#include "dem/Errors.h"
+#include "dem/LoadTest.h"
+#include "dem/Pack.h"
+#include "dem/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace dem;
+
+namespace {
+
+/// A grown pack in a cube without gravity (as a laboratory specimen under the press).
+Model specimen(int n, double side, double rmin, double rmax, std::uint64_t seed = 1)
+{
+  Model m;
+  m.domain.size = Vec3(side, side, side);
+  m.material.youngsModulus = 1e8;
+  m.gravity.setZero();
+  PackParameters p;
+  p.initialElements = n;
+  p.minimumSize = rmin;
+  p.maximumSize = rmax;
+  p.randomSeed = seed;
+  buildPack(m, p);
+  growElements(m);
+  return m;
+}
+
+void runUntilDone(Model& m, Simulation& sim, int maxBatches, int batch = 500)
+{
+  for (int k = 0; k < maxBatches && m.test.stage != TestStage::Done; ++k) {
+    sim.advance(batch);
+  }
+}
+
+} // namespace
+
+// Isotropic: every face reaches Confining Stress within 2 % and holds it.
+TEST(Press, IsotropicReachesAndHoldsConfiningStress)
+{
+  Model m = specimen(1500, 0.03, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Isotropic;
+  s.confiningStress = 1e5;
+  s.sampleInterval = 200;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  runUntilDone(m, sim, 100);
+  ASSERT_EQ(m.test.stage, TestStage::Done) << "stops once settled";
+  for (int extra = 0; extra < 3; ++extra) {
+    const TestMeasurements me = sim.measurements();
+    for (int w = 0; w < 6; ++w) {
+      EXPECT_NEAR(me.faceStress[w], 1e5, 0.02e5) << "face " << w;
+    }
+    sim.advance(1000); // the walls stop and the specimen stays at the stress
+  }
+  EXPECT_NEAR(sim.measurements().meanStress, 1e5, 0.03e5) << "Love-Weber mean stress agrees";
+}
+
+// Triaxial: consolidation reaches the target, then through shear the side faces hold it
+// within 2 % while the deviator stress rises.
+TEST(Press, TriaxialConsolidatesThenSidesHoldThroughShear)
+{
+  Model m = specimen(1500, 0.03, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.axis = 2;
+  s.confiningStress = 1e5;
+  s.strainRate = 0.5;
+  s.maxStrain = 0.02;
+  s.sampleInterval = 200;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  runUntilDone(m, sim, 200);
+  ASSERT_EQ(m.test.stage, TestStage::Done);
+  const auto& columns = historyColumns();
+  const auto column = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  std::size_t shearRows = 0;
+  double lastDeviator = 0.0;
+  for (const auto& row : m.test.history) {
+    if (static_cast<TestStage>(row[column("Stage")]) != TestStage::Shear) {
+      continue;
+    }
+    ++shearRows;
+    for (const char* side : { "Stress X- (Pa)", "Stress X+ (Pa)", "Stress Y- (Pa)", "Stress Y+ (Pa)" }) {
+      EXPECT_NEAR(row[column(side)], 1e5, 0.02e5) << side << " at strain " << row[column("Strain Z")];
+    }
+    lastDeviator = row[column("Deviator Stress (Pa)")];
+  }
+  EXPECT_GT(shearRows, 10u);
+  EXPECT_GT(lastDeviator, 0.1e5) << "the platen loads the specimen";
+  EXPECT_GE(m.test.history.back()[column("Strain Z")], 0.02 - 1e-3);
+}
+
+// Unconfined compression of a cemented specimen: elastic rise, a peak, post-peak
+// softening, broken bonds (the character of a UCS test).
+TEST(Press, UnconfinedCompressionOfCementedSpecimenFails)
+{
+  Model m = specimen(400, 0.016, 0.0008, 0.0012, 3);
+  {
+    // Close the pack a little so the cement has contacts to bond.
+    LoadTestSettings iso;
+    iso.mode = TestMode::Isotropic;
+    iso.confiningStress = 2e4;
+    startLoadTest(m, iso);
+    Simulation sim(m);
+    runUntilDone(m, sim, 100, 200);
+  }
+  CementParameters c;
+  c.bondModulus = 2e7;
+  c.tensileStrength = 2e5;
+  c.cohesion = 4e5;
+  c.strengthScatter = 0.2;
+  c.gapTolerance = 0.1;
+  ASSERT_GT(cement(m, c).bonds, 500u);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.strainRate = 1.0;
+  s.maxStrain = 0.03;
+  s.sampleInterval = 100;
+  startLoadTest(m, s);
+  EXPECT_FALSE(m.walls[0].active) << "side walls are removed";
+  EXPECT_TRUE(m.walls[4].active && m.walls[5].active) << "the platens stay";
+  Simulation sim(m);
+  runUntilDone(m, sim, 400);
+  ASSERT_EQ(m.test.stage, TestStage::Done);
+  const auto& h = m.test.history;
+  std::size_t peakRow = 0;
+  for (std::size_t r = 0; r < h.size(); ++r) {
+    if (h[r][18] > h[peakRow][18]) {
+      peakRow = r;
+    }
+  }
+  const double peak = h[peakRow][18];
+  EXPECT_NEAR(peak, m.test.peakStress, 1e-9 * peak);
+  EXPECT_GT(peak, 0.0);
+  EXPECT_GT(peakRow, h.size() / 10) << "elastic rise before the peak";
+  EXPECT_LT(peakRow, h.size() - 3) << "the peak is not at the end";
+  EXPECT_LT(h.back()[18], 0.7 * peak) << "post-peak softening";
+  EXPECT_GT(countBonds(m.bonds).broken, 20u) << "bonds break";
+  // Elastic rise: stress grows with strain in the first part of the curve.
+  EXPECT_GT(h[peakRow / 2][18], 0.2 * peak);
+}
+
+// Setting Mode back to Off restores all six walls at the box.
+TEST(Press, ModeOffRestoresTheBox)
+{
+  Model m = specimen(300, 0.02, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  startLoadTest(m, s);
+  ASSERT_FALSE(m.walls[0].active);
+  s.mode = TestMode::Off;
+  startLoadTest(m, s);
+  for (int w = 0; w < 6; ++w) {
+    EXPECT_TRUE(m.walls[w].active) << w;
+    const double face = m.walls[w].side == 0 ? m.domain.origin[m.walls[w].axis]
+                                             : m.domain.origin[m.walls[w].axis] + m.domain.size[m.walls[w].axis];
+    EXPECT_EQ(m.walls[w].position, face) << w;
+  }
+  EXPECT_EQ(m.test.stage, TestStage::Idle);
+}
+
+TEST(Press, HistoryHasTheDocumentedColumns)
+{
+  const auto& c = historyColumns();
+  ASSERT_EQ(c.size(), HistoryColumnCount);
+  for (const char* name : { "Time (s)", "Strain X", "Strain Y", "Strain Z", "Volumetric Strain",
+         "Stress Z+ (Pa)", "Sigma XX (Pa)", "Sigma ZX (Pa)", "Axial Stress (Pa)", "Lateral Stress (Pa)",
+         "Deviator Stress (Pa)", "Broken In Tension", "Broken In Shear", "Unbalanced Force Ratio",
+         "Inertial Number", "Stage" }) {
+    EXPECT_NE(std::find(c.begin(), c.end(), name), c.end()) << name;
+  }
+}
+
+TEST(Press, BadSettingsAreNamed)
+{
+  Model m = specimen(100, 0.02, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.confiningStress = 0.0;
+  try {
+    startLoadTest(m, s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Confining Stress"), std::string::npos) << e.what();
+  }
+  s.confiningStress = 1e5;
+  s.servoAlpha = 1.5;
+  EXPECT_THROW(startLoadTest(m, s), InputError);
+}
