@@ -4,19 +4,25 @@
 
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
+#include "dem/LoadTest.h"
 #include "dem/Model.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
 
+#include <vtkDoubleArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkTable.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -35,6 +41,105 @@ double ModelBytes(const dem::Model& m)
     m.contacts.size() * (2 * sizeof(std::int64_t) + 2 * sizeof(dem::Vec3)) +
     m.bonds.size() * (2 * sizeof(std::int64_t) + 7 * sizeof(double) + 4 * sizeof(dem::Vec3) + 1) +
     m.test.history.size() * dem::HistoryColumnCount * sizeof(double));
+}
+
+/// Derived plot columns of the History table (port 1): name, source column, scale.
+struct PlotColumn
+{
+  const char* name;
+  const char* source; ///< nullptr: the strain on the test axis
+  double scale;
+};
+const PlotColumn PlotColumns[] = {
+  { "Axial Strain (%)", nullptr, 100.0 },
+  { "Volumetric Strain (%)", "Volumetric Strain", 100.0 },
+  { "Axial Stress (MPa)", "Axial Stress (Pa)", 1e-6 },
+  { "Lateral Stress (MPa)", "Lateral Stress (Pa)", 1e-6 },
+  { "Deviator Stress (MPa)", "Deviator Stress (Pa)", 1e-6 },
+};
+
+std::size_t ColumnIndex(const std::string& name)
+{
+  const auto& names = dem::historyColumns();
+  for (std::size_t k = 0; k < names.size(); ++k)
+  {
+    if (names[k] == name)
+    {
+      return k;
+    }
+  }
+  throw std::logic_error("history column '" + name + "' not found");
+}
+
+/// The history as a table: the engine's columns, then the derived plot columns.
+void HistoryToTable(const dem::LoadTestState& test, int axis, vtkTable* table)
+{
+  table->Initialize();
+  const auto& names = dem::historyColumns();
+  const vtkIdType rows = static_cast<vtkIdType>(test.history.size());
+  for (std::size_t c = 0; c < names.size(); ++c)
+  {
+    vtkNew<vtkDoubleArray> column;
+    column->SetName(names[c].c_str());
+    column->SetNumberOfTuples(rows);
+    for (vtkIdType r = 0; r < rows; ++r)
+    {
+      column->SetValue(r, test.history[static_cast<std::size_t>(r)][c]);
+    }
+    table->AddColumn(column);
+  }
+  const std::size_t axialStrain = ColumnIndex(std::string("Strain ") + "XYZ"[axis]);
+  for (const PlotColumn& plot : PlotColumns)
+  {
+    const std::size_t source = plot.source ? ColumnIndex(plot.source) : axialStrain;
+    vtkNew<vtkDoubleArray> column;
+    column->SetName(plot.name);
+    column->SetNumberOfTuples(rows);
+    for (vtkIdType r = 0; r < rows; ++r)
+    {
+      column->SetValue(r, plot.scale * test.history[static_cast<std::size_t>(r)][source]);
+    }
+    table->AddColumn(column);
+  }
+}
+
+/// Writes the table as CSV (quoted header, full precision) to a temporary name beside
+/// the target, then renames it over the target: a crash never leaves a half-written file.
+void WriteTableCSV(vtkTable* table, const std::string& path)
+{
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::out | std::ios::trunc);
+    if (!out)
+    {
+      throw std::runtime_error("History File: cannot write '" + temporary + "'.");
+    }
+    const vtkIdType columns = table->GetNumberOfColumns();
+    for (vtkIdType c = 0; c < columns; ++c)
+    {
+      out << (c ? "," : "") << '"' << table->GetColumnName(c) << '"';
+    }
+    out << "\n" << std::setprecision(17);
+    for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+    {
+      for (vtkIdType c = 0; c < columns; ++c)
+      {
+        out << (c ? "," : "")
+            << vtkDoubleArray::SafeDownCast(table->GetColumn(c))->GetValue(r);
+      }
+      out << "\n";
+    }
+    out.flush();
+    if (!out)
+    {
+      throw std::runtime_error("History File: writing '" + temporary + "' failed.");
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("History File: cannot rename '" + temporary + "' to '" + path + "'.");
+  }
 }
 }
 
@@ -75,11 +180,23 @@ vtkDEMLoadTest::vtkDEMLoadTest()
   this->Gravity[0] = 0.0;
   this->Gravity[1] = 0.0;
   this->Gravity[2] = -9.81;
+  this->SetNumberOfOutputPorts(2);
 }
 
 vtkDEMLoadTest::~vtkDEMLoadTest()
 {
+  this->SetHistoryFile(nullptr);
   delete this->Internals;
+}
+
+int vtkDEMLoadTest::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
 }
 
 int vtkDEMLoadTest::FillInputPortInformation(int, vtkInformation* info)
@@ -91,23 +208,27 @@ int vtkDEMLoadTest::FillInputPortInformation(int, vtkInformation* info)
 int vtkDEMLoadTest::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!(this->FrameInterval > 0.0) || this->NumberOfFrames < 1)
+  // Both ports (model and history table) publish the same frames.
+  for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
   {
-    // Reported in RequestData; publish no times meanwhile.
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-    return 1;
+    vtkInformation* outInfo = outputVector->GetInformationObject(port);
+    if (!(this->FrameInterval > 0.0) || this->NumberOfFrames < 1)
+    {
+      // Reported in RequestData; publish no times meanwhile.
+      outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+      outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+      continue;
+    }
+    std::vector<double> times(static_cast<std::size_t>(this->NumberOfFrames) + 1);
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      times[k] = static_cast<double>(k) * this->FrameInterval;
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+      static_cast<int>(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
-  std::vector<double> times(static_cast<std::size_t>(this->NumberOfFrames) + 1);
-  for (std::size_t k = 0; k < times.size(); ++k)
-  {
-    times[k] = static_cast<double>(k) * this->FrameInterval;
-  }
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-    static_cast<int>(times.size()));
-  const double range[2] = { times.front(), times.back() };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
 }
 
@@ -134,20 +255,43 @@ int vtkDEMLoadTest::RequestUpdateExtent(
 }
 
 int vtkDEMLoadTest::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInternals& in = *this->Internals;
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // The time comes from the port that asked (the model or the history table).
+  int port = 0;
+  if (request && request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT()))
+  {
+    port = request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT());
+  }
+  if (port < 0 || port >= outputVector->GetNumberOfInformationObjects() ||
+    !outputVector->GetInformationObject(port)->Has(
+      vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    port = 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(port);
   auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  auto* history = vtkTable::GetData(outputVector, 1);
   auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
   const auto start = std::chrono::steady_clock::now();
   try
   {
-    if (this->Mode != MODE_OFF)
+    if (this->Mode < MODE_OFF || this->Mode > MODE_ISOTROPIC)
     {
       throw dem::InputError("Mode = " + std::to_string(this->Mode) +
-        " is not available: valid modes are Off (0).");
+        " is out of range: valid modes are Off (0), Compression (1), Tension (2), Triaxial (3), "
+        "Isotropic (4).");
     }
+    dem::LoadTestSettings press;
+    press.mode = static_cast<dem::TestMode>(this->Mode);
+    press.axis = this->Axis;
+    press.confiningStress = this->ConfiningStress;
+    press.strainRate = this->StrainRate;
+    press.maxStrain = this->MaxStrain;
+    press.servoAlpha = this->ServoAlpha;
+    press.sampleInterval = this->SampleInterval;
+    dem::validate(press);
     if (!(this->FrameInterval > 0.0) || !std::isfinite(this->FrameInterval))
     {
       throw dem::InputError("Frame Interval = " + dem::formatValue(this->FrameInterval) +
@@ -211,6 +355,8 @@ int vtkDEMLoadTest::RequestData(
         in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
           " m/s^2 along Z acts along -Y in the section plane.";
       }
+      // Start the press (Mode Off restores the box) before the simulation sees the model.
+      dem::startLoadTest(in.Model, press);
       in.Simulation.reset(new dem::Simulation(in.Model));
       in.StepsPerFrame =
         std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
@@ -308,7 +454,12 @@ int vtkDEMLoadTest::RequestData(
     in.Simulation.reset();
     vtkErrorMacro(<< e.what());
     this->StatusText = e.what();
+    this->StageText = "idle";
     output->Initialize();
+    if (history)
+    {
+      history->Initialize();
+    }
     return 0;
   }
 
@@ -329,6 +480,34 @@ int vtkDEMLoadTest::RequestData(
   this->ModelTime = in.Model.clock.time;
   this->CurrentFrame = in.Frame;
   this->SolverPathText = in.Simulation->path();
+  const dem::TestMeasurements me = in.Simulation->measurements();
+  const int axis = std::max(0, std::min(2, in.Model.test.settings.axis));
+  this->StageText = dem::stageName(in.Model.test.stage);
+  this->AxialStrain = me.strain[static_cast<std::size_t>(axis)];
+  this->VolumetricStrain = me.volumetricStrain;
+  this->AxialStress = me.axialStress;
+  this->LateralStress = me.lateralStress;
+  this->DeviatorStress = me.deviatorStress;
+  this->PeakStress = in.Model.test.peakStress;
+  this->InertialNumber = me.inertialNumber;
+  this->SuggestedStrainRate = me.suggestedStrainRate;
+  const double dataTime = static_cast<double>(in.Frame) * this->FrameInterval;
+  if (history)
+  {
+    HistoryToTable(in.Model.test, axis, history);
+    history->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), dataTime);
+    if (this->HistoryFile && *this->HistoryFile)
+    {
+      try
+      {
+        WriteTableCSV(history, this->HistoryFile);
+      }
+      catch (const std::exception& e)
+      {
+        vtkWarningMacro(<< e.what());
+      }
+    }
+  }
   if (!in.Failed)
   {
     std::ostringstream line;
@@ -343,8 +522,7 @@ int vtkDEMLoadTest::RequestData(
     this->StatusText = line.str();
     vtkOutputWindowDisplayText(("DEM Load Test: " + line.str() + "\n").c_str());
   }
-  output->GetInformation()->Set(
-    vtkDataObject::DATA_TIME_STEP(), static_cast<double>(in.Frame) * this->FrameInterval);
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), dataTime);
   return 1;
 }
 
@@ -362,6 +540,16 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Gravity: " << this->Gravity[0] << " " << this->Gravity[1] << " "
      << this->Gravity[2] << " m/s^2\n";
   os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "Axis: " << this->Axis << "\n";
+  os << indent << "ConfiningStress: " << this->ConfiningStress << " Pa\n";
+  os << indent << "StrainRate: " << this->StrainRate << " 1/s\n";
+  os << indent << "MaxStrain: " << this->MaxStrain << "\n";
+  os << indent << "ServoAlpha: " << this->ServoAlpha << "\n";
+  os << indent << "SampleInterval: " << this->SampleInterval << "\n";
+  os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
+  os << indent << "Stage: " << this->StageText << "\n";
+  os << indent << "AxialStress: " << this->AxialStress << " Pa\n";
+  os << indent << "PeakStress: " << this->PeakStress << " Pa\n";
   os << indent << "CriticalTimestep: " << this->CriticalTimestep << " s\n";
   os << indent << "Timestep: " << this->Timestep << " s\n";
   os << indent << "CurrentPorosity: " << this->CurrentPorosity << "\n";

@@ -2,8 +2,10 @@
  * @class   vtkDEMLoadTest
  * @brief   The time-stepping stage of a RockDEM pipeline: runs the model.
  *
- * With Mode Off it simply runs its input model (a pack settling under gravity, say);
- * loading modes come later. Time contract (DESIGN.md): the filter publishes its own time
+ * With Mode Off it simply runs its input model (a pack settling under gravity, say); the
+ * other modes are the virtual press (Documentation/LoadTest.md): Compression, Tension,
+ * Triaxial, Isotropic. Output port 0 is the model; output port 1 ("History") is the test
+ * history as a vtkTable (one row every Sample Interval steps). Time contract (DESIGN.md): the filter publishes its own time
  * steps t_k = k * FrameInterval (s, model time since the start of this stage), k = 0 ..
  * NumberOfFrames. A request for a later time advances the cached state; a request for an
  * earlier time restores the nearest earlier in-memory checkpoint and replays (exact, the
@@ -33,7 +35,11 @@ public:
 
   enum ModeType
   {
-    MODE_OFF = 0
+    MODE_OFF = 0,
+    MODE_COMPRESSION = 1,
+    MODE_TENSION = 2,
+    MODE_TRIAXIAL = 3,
+    MODE_ISOTROPIC = 4
   };
   enum ContactLawType
   {
@@ -42,9 +48,51 @@ public:
   };
 
   ///@{
-  /// Loading mode. Off: run the model as it is (settling under gravity).
+  /// Loading mode (ModeType). Off: run the model as it is (settling under gravity).
   vtkSetMacro(Mode, int);
   vtkGetMacro(Mode, int);
+  ///@}
+
+  ///@{
+  /// Platen axis: 0 X, 1 Y, 2 Z (default).
+  vtkSetMacro(Axis, int);
+  vtkGetMacro(Axis, int);
+  ///@}
+
+  ///@{
+  /// Stress held by the servo-controlled faces (Triaxial, Isotropic), Pa.
+  vtkSetMacro(ConfiningStress, double);
+  vtkGetMacro(ConfiningStress, double);
+  ///@}
+
+  ///@{
+  /// Platen speed as a fraction of the starting length per second, 1/s.
+  vtkSetMacro(StrainRate, double);
+  vtkGetMacro(StrainRate, double);
+  ///@}
+
+  ///@{
+  /// The shearing stage stops at this axial strain, -, in (0, 1).
+  vtkSetMacro(MaxStrain, double);
+  vtkGetMacro(MaxStrain, double);
+  ///@}
+
+  ///@{
+  /// Servo aggressiveness, (0, 1].
+  vtkSetMacro(ServoAlpha, double);
+  vtkGetMacro(ServoAlpha, double);
+  ///@}
+
+  ///@{
+  /// Physics steps between history rows (>= 1).
+  vtkSetMacro(SampleInterval, int);
+  vtkGetMacro(SampleInterval, int);
+  ///@}
+
+  ///@{
+  /// Optional CSV file the history is written to after every update (empty: none).
+  vtkSetStringMacro(HistoryFile);
+  vtkGetStringMacro(HistoryFile);
   ///@}
 
   ///@{
@@ -116,6 +164,19 @@ public:
   ///@}
 
   ///@{
+  /// Read-only press measurements of the last update (compression positive).
+  const char* GetStage() const { return this->StageText.c_str(); } ///< "idle", "consolidate", ...
+  vtkGetMacro(AxialStrain, double);         ///< -, shortening positive
+  vtkGetMacro(VolumetricStrain, double);    ///< -
+  vtkGetMacro(AxialStress, double);         ///< Pa
+  vtkGetMacro(LateralStress, double);       ///< Pa
+  vtkGetMacro(DeviatorStress, double);      ///< Pa
+  vtkGetMacro(PeakStress, double);          ///< Pa
+  vtkGetMacro(InertialNumber, double);      ///< -
+  vtkGetMacro(SuggestedStrainRate, double); ///< 1/s
+  ///@}
+
+  ///@{
   /// Read-only bond counts of the current model (reference guide "Reading damage").
   vtkGetMacro(NumberOfBonds, vtkIdType);       ///< Bonds: installed
   vtkGetMacro(NumberOfBrokenBonds, vtkIdType); ///< Broken Bonds
@@ -129,6 +190,7 @@ protected:
   ~vtkDEMLoadTest() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -144,6 +206,13 @@ protected:
   double SettlingDamping;
   double Gravity[3];
   int Threads;
+  int Axis = 2;
+  double ConfiningStress = 1e6;
+  double StrainRate = 0.1;
+  double MaxStrain = 0.02;
+  double ServoAlpha = 0.5;
+  int SampleInterval = 100;
+  char* HistoryFile = nullptr;
 
   double CriticalTimestep;
   double Timestep;
@@ -161,6 +230,15 @@ protected:
   double Damage = 0.0;
   vtkIdType BrokenInTension = 0;
   vtkIdType BrokenInShear = 0;
+  std::string StageText = "idle";
+  double AxialStrain = 0.0;
+  double VolumetricStrain = 0.0;
+  double AxialStress = 0.0;
+  double LateralStress = 0.0;
+  double DeviatorStress = 0.0;
+  double PeakStress = 0.0;
+  double InertialNumber = 0.0;
+  double SuggestedStrainRate = 0.0;
 
 private:
   vtkDEMLoadTest(const vtkDEMLoadTest&) = delete;

@@ -47,3 +47,32 @@ def read_only(proxy, name):
     if isinstance(value, (list, tuple)) and len(value) == 1:
         return value[0]
     return value
+
+
+#: The History table columns the test chart shows (stresses on the left axis, MPa).
+TEST_CHART_STRESSES = ("Axial Stress (MPa)", "Lateral Stress (MPa)", "Deviator Stress (MPa)")
+#: Plotted on the right-hand axis, %.
+TEST_CHART_RIGHT = "Volumetric Strain (%)"
+
+
+def show_test_chart(load_test, view=None):
+    """Plot a DEM Load Test's History (output port 1) as the DEM Test chart.
+
+    Axial, lateral and deviator stress (MPa) against axial strain (%), and volumetric
+    strain (%) on the right-hand axis. Creates an XYChartView unless one is given;
+    returns the view.
+    """
+    view = view or _simple.CreateView("XYChartView")
+    display = _simple.Show(_simple.OutputPort(load_test, 1), view, "XYChartRepresentation")
+    display.UseIndexForXAxis = 0
+    display.XArrayName = "Axial Strain (%)"
+    display.SeriesVisibility = list(TEST_CHART_STRESSES) + [TEST_CHART_RIGHT]
+    corners = []
+    for name in TEST_CHART_STRESSES:
+        corners += [name, "0"]
+    corners += [TEST_CHART_RIGHT, "1"]
+    display.SeriesPlotCorner = corners
+    view.BottomAxisTitle = "Axial Strain (%)"
+    view.LeftAxisTitle = "Stress (MPa)"
+    view.RightAxisTitle = "Volumetric Strain (%)"
+    return view
