@@ -1,6 +1,7 @@
 #include "vtkDEMCement.h"
 
 #include "vtkDEMModelConversion.h"
+#include "vtkDEMPipelineTime.h"
 
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
@@ -79,19 +80,7 @@ int vtkDEMCement::RequestUpdateExtent(
   // A stepped upstream model is read at a fixed time, its last time step, so that
   // changing the animation time never re-runs the stage before this one.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
-  {
-    const int n = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    const double* steps = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    if (n > 0)
-    {
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), steps[n - 1]);
-    }
-  }
-  else
-  {
-    inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-  }
+  rockdem::RequestLastUpstreamTime(inInfo);
   return 1;
 }
 

@@ -29,6 +29,27 @@ double cundall(double force, double velocity, double alpha)
   return force - alpha * std::abs(force) * signOf(velocity);
 }
 
+/// Finds a particle's slot from its global id (ids are stable, slots are storage order).
+class SlotLookup {
+public:
+  explicit SlotLookup(const Particles& p) : sorted_(p.size())
+  {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      sorted_[i] = { p.id[i], static_cast<std::uint32_t>(i) };
+    }
+    std::sort(sorted_.begin(), sorted_.end());
+  }
+  /// The slot of `id`, or -1 when no particle has it.
+  long find(std::int64_t id) const
+  {
+    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::make_pair(id, std::uint32_t(0)));
+    return (it != sorted_.end() && it->first == id) ? static_cast<long>(it->second) : -1;
+  }
+
+private:
+  std::vector<std::pair<std::int64_t, std::uint32_t>> sorted_;
+};
+
 int availableThreads()
 {
 #ifdef _OPENMP
@@ -86,22 +107,18 @@ double bondTimestep(const Model& model)
   if (b.size() == 0) {
     return std::numeric_limits<double>::infinity();
   }
-  std::vector<std::pair<std::int64_t, std::size_t>> slotOf(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    slotOf[i] = { p.id[i], i };
-  }
-  std::sort(slotOf.begin(), slotOf.end());
+  const SlotLookup slots(p);
   std::vector<double> translational(p.size(), 0.0);
   std::vector<double> rotational(p.size(), 0.0);
   const bool planar = model.domain.section2D;
   for (std::size_t k = 0; k < b.size(); ++k) {
     const BondSection s = bondSection(b.radius[k], planar, model.domain.slabThickness());
     for (std::int64_t id : { b.idA[k], b.idB[k] }) {
-      auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::size_t(0)));
-      if (it == slotOf.end() || it->first != id) {
+      const long slot = slots.find(id);
+      if (slot < 0) {
         continue;
       }
-      const std::size_t i = it->second;
+      const std::size_t i = static_cast<std::size_t>(slot);
       const double r = p.radius[i];
       translational[i] += std::max(b.normalStiffness[k], b.shearStiffness[k]) * s.area;
       rotational[i] += b.normalStiffness[k] * s.inertia + b.shearStiffness[k] * s.area * r * r;
@@ -363,15 +380,8 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
 
   if (importModelHistory) {
     // Stored history is keyed by global ids: map ids to slots, then find each pair.
-    std::vector<std::pair<std::int64_t, std::uint32_t>> slotOf(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      slotOf[i] = { p.id[i], static_cast<std::uint32_t>(i) };
-    }
-    std::sort(slotOf.begin(), slotOf.end());
-    auto findSlot = [&](std::int64_t id) -> long {
-      auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::uint32_t(0)));
-      return (it != slotOf.end() && it->first == id) ? static_cast<long>(it->second) : -1;
-    };
+    const SlotLookup slots(p);
+    auto findSlot = [&](std::int64_t id) { return slots.find(id); };
     const ContactHistory& h = model_.contacts;
     for (std::size_t c = 0; c < h.size(); ++c) {
       const long a = findSlot(h.idA[c]);
@@ -690,18 +700,14 @@ void Simulation::buildBondLists()
   const Particles& p = model_.particles;
   const Bonds& b = model_.bonds;
   const std::size_t n = p.size();
-  std::vector<std::pair<std::int64_t, std::uint32_t>> slotOf(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    slotOf[i] = { p.id[i], static_cast<std::uint32_t>(i) };
-  }
-  std::sort(slotOf.begin(), slotOf.end());
+  const SlotLookup slots(p);
   auto findSlot = [&](std::int64_t id) {
-    auto it = std::lower_bound(slotOf.begin(), slotOf.end(), std::make_pair(id, std::uint32_t(0)));
-    if (it == slotOf.end() || it->first != id) {
-      throw InputError("Bond between particles " + std::to_string(id) +
-                       " refers to a particle that is not in the model.");
+    const long slot = slots.find(id);
+    if (slot < 0) {
+      throw InputError("A bond refers to particle " + std::to_string(id) +
+                       ", which is not in the model.");
     }
-    return it->second;
+    return static_cast<std::uint32_t>(slot);
   };
   im.bondI.resize(b.size());
   im.bondJ.resize(b.size());

@@ -23,7 +23,8 @@
 // --quick (the ctest smoke test, ~1 s): 2000 particles x 50 steps per pack and thread
 // count, then a two-point sweep (0.1 and 3.0) on reduced workloads.
 // --repeat R runs each configuration R times and reports the fastest (the machine may be
-// shared). --sort reorders the particle slots along a space-filling order before the run (an
+// shared; the "others" column says how many cores other processes kept busy during the
+// reported run, from /proc/stat minus this process's CPU time). --sort reorders the particle slots along a space-filling order before the run (an
 // experiment: the solver keeps the order it is given; buildPack's order is random).
 // --write-pack writes the pack as "id type diameter density x y z" lines (SI units) with
 // "# key value" header lines (box, timestep, material) for the LIGGGHTS comparison
@@ -56,7 +57,11 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -217,6 +222,28 @@ void resetPeakResident()
 }
 
 double peakResidentBytes() { return 1024.0 * static_cast<double>(readStatusKiB("VmHWM")); }
+
+/// CPU seconds: (all processes on the machine, this process). Used to report how many
+/// cores other processes kept busy during a timed run (the machine may be shared).
+std::pair<double, double> cpuSeconds()
+{
+  double machine = 0.0;
+  std::ifstream in("/proc/stat");
+  std::string cpu;
+  if (in >> cpu && cpu == "cpu") {
+    double v[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }; // user nice system idle iowait irq softirq steal
+    for (double& x : v) {
+      in >> x;
+    }
+    const double ticks = static_cast<double>(sysconf(_SC_CLK_TCK));
+    machine = (v[0] + v[1] + v[2] + v[5] + v[6] + v[7]) / ticks;
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double self = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec +
+    usage.ru_stime.tv_sec + 1e-6 * usage.ru_stime.tv_usec;
+  return { machine, self };
+}
 
 // ---------------------------------------------------------------------------------------
 // Models
@@ -395,13 +422,14 @@ int runThroughput(const Options& o)
               "damping %.2f, gravity 9.81, Timestep Safety 0.1%s; %d cores\n",
               kYoung, kPoisson, kDensity, kRestitution, kFriction, o.damping,
               o.sort ? ", particles sorted spatially" : "", coreCount());
-  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s\n", "pack", "N", "threads",
+  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s %7s\n", "pack", "N", "threads",
               "path", "steps", "dt(s)", "time(s)", "p-steps/s", "contacts", "model", "solver",
-              "peak");
-  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s\n", "", "", "", "", "", "",
-              "", "", "(end)", "B/part", "B/part", "B/part");
+              "peak", "others");
+  std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s %7s\n", "", "", "", "", "", "",
+              "", "", "(end)", "B/part", "B/part", "B/part", "(cores)");
   csv.line("pack,N,threads,path,steps,timestep_s,seconds,particle_steps_per_s,contacts_end,"
-           "model_bytes_per_particle,solver_bytes_per_particle,peak_bytes_per_particle,kinetic_energy_end_J",
+           "model_bytes_per_particle,solver_bytes_per_particle,peak_bytes_per_particle,kinetic_energy_end_J,"
+           "other_processes_cores",
            false);
   for (long requested : o.sizes) {
     const long steps = o.steps > 0 ? o.steps : (o.quick ? 50 : defaultSteps(requested));
@@ -411,6 +439,7 @@ int runThroughput(const Options& o)
         double rss0 = 0.0, rss1 = 0.0, rss2 = 0.0, peak = 0.0, n = 0.0;
         std::size_t contacts = 0;
         double kinetic = 0.0;
+        double others = 0.0; // cores used by other processes during the fastest run
         std::string path;
         double timestep = 0.0;
         dem::PackReport report;
@@ -428,11 +457,16 @@ int runThroughput(const Options& o)
           dem::Simulation sim(model);
           rss2 = residentBytes();
           resetPeakResident();
+          const auto cpu0 = cpuSeconds();
           const auto start = std::chrono::steady_clock::now();
           sim.advance(steps);
           const double elapsed = secondsSince(start);
+          const auto cpu1 = cpuSeconds();
           peak = peakResidentBytes();
-          seconds = rep == 0 ? elapsed : std::min(seconds, elapsed);
+          if (rep == 0 || elapsed < seconds) {
+            seconds = elapsed;
+            others = std::max(0.0, ((cpu1.first - cpu0.first) - (cpu1.second - cpu0.second)) / elapsed);
+          }
           contacts = sim.diagnostics().contacts;
           kinetic = sim.diagnostics().kineticEnergy;
           path = sim.path();
@@ -442,14 +476,14 @@ int runThroughput(const Options& o)
         const double modelBytes = (rss1 - rss0) / n;
         const double solverBytes = (rss2 - rss1) / n;
         const double peakBytes = (peak - rss0) / n;
-        std::printf("%-8s %9.0f %7d %-22s %6ld %10.4g %8.3f %12.4g %9zu %8.0f %8.0f %8.0f\n",
+        std::printf("%-8s %9.0f %7d %-22s %6ld %10.4g %8.3f %12.4g %9zu %8.0f %8.0f %8.0f %7.2f\n",
                     pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
-                    contacts, modelBytes, solverBytes, peakBytes);
+                    contacts, modelBytes, solverBytes, peakBytes, others);
         std::fflush(stdout);
         char line[512];
-        std::snprintf(line, sizeof(line), "%s,%.0f,%d,%s,%ld,%.9g,%.6f,%.6g,%zu,%.1f,%.1f,%.1f,%.8g",
+        std::snprintf(line, sizeof(line), "%s,%.0f,%d,%s,%ld,%.9g,%.6f,%.6g,%zu,%.1f,%.1f,%.1f,%.8g,%.2f",
                       pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
-                      contacts, modelBytes, solverBytes, peakBytes, kinetic);
+                      contacts, modelBytes, solverBytes, peakBytes, kinetic, others);
         csv.line(line, false);
         if (report.saturated) {
           std::printf("  note: %s\n", report.summary().c_str());
