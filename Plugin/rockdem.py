@@ -63,6 +63,10 @@ def show_test_chart(load_test, view=None):
     returns the view.
     """
     view = view or _simple.CreateView("XYChartView")
+    times = list(load_test.TimestepValues or [])
+    if times:
+        # A view shows its own time (0 in a fresh pvbatch view): the whole test is at the end.
+        view.ViewTime = times[-1]
     display = _simple.Show(_simple.OutputPort(load_test, 1), view, "XYChartRepresentation")
     display.UseIndexForXAxis = 0
     display.XArrayName = "Axial Strain (%)"
@@ -76,3 +80,263 @@ def show_test_chart(load_test, view=None):
     view.LeftAxisTitle = "Stress (MPa)"
     view.RightAxisTitle = "Volumetric Strain (%)"
     return view
+
+
+# ---------------------------------------------------------------------------------------
+# Analysis of load tests: history tables, elastic constants, the failure envelope.
+#
+# Conventions are the engine's: stresses compression positive, strains shortening
+# positive, SI units (Pa, radians internally, degrees where named).
+# ---------------------------------------------------------------------------------------
+
+#: Rows of the History table whose Stage is this are the shear (loading) stage.
+STAGE_SHEAR = 2
+
+
+def _np():
+    import numpy
+    return numpy
+
+
+def history_to_dict(table):
+    """Columns of a History table as {name: numpy array}.
+
+    Accepts a fetched ``vtkTable`` (``servermanager.Fetch(load_test, idx=1)``) or a dict
+    of columns (returned as a dict of float arrays).
+    """
+    np = _np()
+    if isinstance(table, dict):
+        return {k: np.asarray(v, dtype=float) for k, v in table.items()}
+    out = {}
+    for c in range(table.GetNumberOfColumns()):
+        column = table.GetColumn(c)
+        n = column.GetNumberOfTuples()
+        out[table.GetColumnName(c)] = np.array([column.GetTuple1(r) for r in range(n)], dtype=float) \
+            if n else np.zeros(0)
+    return out
+
+
+def fetch_history(load_test):
+    """A DEM Load Test's History (output port 1) at its last update, as a dict of arrays."""
+    from paraview import servermanager
+    return history_to_dict(servermanager.Fetch(load_test, idx=1))
+
+
+def _shear_rows(history):
+    """Mask of the rows in the shear stage (all rows when there is no Stage column)."""
+    np = _np()
+    n = len(next(iter(history.values()))) if history else 0
+    if "Stage" in history:
+        mask = np.asarray(history["Stage"]) == STAGE_SHEAR
+        if mask.any():
+            return mask
+    return np.ones(n, dtype=bool)
+
+
+def fit_mohr_coulomb(confining_stresses, peak_axial_stresses):
+    """Cohesion (Pa) and friction angle (degrees) of the Mohr-Coulomb envelope.
+
+    The peaks of triaxial tests (sigma1, the peak axial stress) against their confining
+    stresses (sigma3), compression positive, are fitted by least squares with the line
+
+        sigma1 = a + b sigma3,
+
+    which is the Mohr-Coulomb criterion written in principal stresses:
+
+        b = (1 + sin phi) / (1 - sin phi)          so  sin phi = (b - 1) / (b + 1)
+        a = 2 c cos phi / (1 - sin phi)            so  c = a (1 - sin phi) / (2 cos phi)
+
+    (a is the unconfined compressive strength the envelope predicts). At least two
+    distinct confining stresses are needed; a slope b < 1 (strength falling with
+    confinement) has no Mohr-Coulomb meaning and raises ValueError.
+    Returns (cohesion_Pa, friction_angle_deg).
+    """
+    import math
+    np = _np()
+    s3 = np.asarray(confining_stresses, dtype=float)
+    s1 = np.asarray(peak_axial_stresses, dtype=float)
+    if s3.shape != s1.shape or s3.size < 2 or np.ptp(s3) == 0.0:
+        raise ValueError("fit_mohr_coulomb needs at least two distinct confining stresses "
+                         "with one peak each")
+    b, a = np.polyfit(s3, s1, 1)
+    if b < 1.0:
+        raise ValueError("slope d(sigma1)/d(sigma3) = %.4g < 1: no Mohr-Coulomb envelope" % b)
+    sin_phi = (b - 1.0) / (b + 1.0)
+    phi = math.asin(sin_phi)
+    cohesion = a * (1.0 - sin_phi) / (2.0 * math.cos(phi))
+    return float(cohesion), float(math.degrees(phi))
+
+
+def mohr_coulomb_line(cohesion, friction_angle_deg):
+    """(a, b) of sigma1 = a + b sigma3 for a cohesion (Pa) and friction angle (degrees)."""
+    import math
+    s = math.sin(math.radians(friction_angle_deg))
+    c = math.cos(math.radians(friction_angle_deg))
+    return 2.0 * cohesion * c / (1.0 - s), (1.0 + s) / (1.0 - s)
+
+
+def elastic_constants(history, axis="Z", lower=0.10, upper=0.50):
+    """Young's modulus (Pa) and Poisson's ratio from an unconfined compression history.
+
+    history: a fetched History vtkTable or a dict of columns with ``Axial Stress (Pa)``
+    and ``Strain X/Y/Z``. Uses the shear-stage rows before the peak whose axial stress
+    lies between ``lower`` and ``upper`` (fractions) of the peak axial stress:
+
+    - E is the slope of the least-squares line axial stress = E x axial strain + const
+      through those rows (with exactly linear data it is the secant modulus);
+    - the lateral strain is the mean of the two other axes' strains; strains in the
+      table are shortening positive, so a bulging specimen has negative lateral strain,
+      and nu = - d(lateral strain) / d(axial strain), again a least-squares slope. In
+      unconfined compression there are no side walls: the lateral strains come from
+      the particles' extent, so nu from a small specimen is coarse.
+
+    Returns (youngs_modulus_Pa, poissons_ratio). Raises ValueError with fewer than two
+    rows in the window.
+    """
+    np = _np()
+    h = history_to_dict(history)
+    axis = axis.upper()
+    others = [a for a in "XYZ" if a != axis]
+    stress = h["Axial Stress (Pa)"]
+    strain = h["Strain " + axis]
+    lateral = 0.5 * (h["Strain " + others[0]] + h["Strain " + others[1]])
+    rows = np.nonzero(_shear_rows(h))[0]
+    if rows.size == 0:
+        raise ValueError("no shear-stage rows in the history")
+    stress, strain, lateral = stress[rows], strain[rows], lateral[rows]
+    ipeak = int(np.argmax(stress))
+    peak = stress[ipeak]
+    window = (np.arange(stress.size) <= ipeak) & (stress >= lower * peak) & (stress <= upper * peak)
+    if window.sum() < 2:
+        raise ValueError("only %d history rows between %g and %g of the peak (%.4g Pa): sample "
+                         "more often (Sample Interval) or load more slowly" % (window.sum(), lower, upper, peak))
+    e_mod = np.polyfit(strain[window], stress[window], 1)[0]
+    nu = -np.polyfit(strain[window], lateral[window], 1)[0]
+    return float(e_mod), float(nu)
+
+
+def peak_values(history):
+    """Peak axial stress and peak deviator stress (Pa) over the shear-stage rows."""
+    np = _np()
+    h = history_to_dict(history)
+    rows = _shear_rows(h)
+    if not rows.any():
+        return 0.0, 0.0
+    return float(np.max(h["Axial Stress (Pa)"][rows])), float(np.max(h["Deviator Stress (Pa)"][rows]))
+
+
+def compressive_to_tensile_ratio(ucs, tensile_strength):
+    """UCS over tensile strength (both magnitudes, Pa); rock is typically 10-20."""
+    if tensile_strength == 0:
+        raise ValueError("tensile strength is zero")
+    return abs(ucs) / abs(tensile_strength)
+
+
+def _filter(name):
+    """The paraview.simple-style constructor of a filter loaded by the plugin (LoadPlugin
+    puts them in the caller's namespace, not in paraview.simple)."""
+    from paraview import servermanager
+    return _simple._create_func(name, servermanager.filters)
+
+
+def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
+    """Create a DEM Load Test on model_source, run it, and return (proxy, history dict).
+
+    mode: 'Off', 'Compression', 'Tension', 'Triaxial' or 'Isotropic'. props are DEM Load
+    Test properties (StrainRate, MaxStrain, ConfiningStress, FrameInterval,
+    NumberOfFrames, SampleInterval, TimestepSafety, Gravity, ...). For a press mode the
+    Gravity defaults to zero (a laboratory press test has none). When FrameInterval and
+    NumberOfFrames are not given, 20 frames spanning 1.05 x MaxStrain / StrainRate of model
+    time are used (plus as much again for a Triaxial consolidation).
+
+    The test is run to its last time step (UpdatePipeline at the last TimestepValues
+    entry); with stop_when_done (default) it is advanced frame by frame and stops at
+    the first frame where Stage is 'done'. progress, when given, is called with
+    (frame, proxy) after each frame. The History (port 1) is fetched into a dict of
+    numpy arrays.
+    """
+    props = dict(props)
+    if mode != "Off":
+        props.setdefault("Gravity", [0.0, 0.0, 0.0])
+    if "FrameInterval" not in props and "NumberOfFrames" not in props and mode != "Off":
+        rate = props.get("StrainRate", 0.1)
+        duration = 1.05 * props.get("MaxStrain", 0.02) / rate
+        frames = 20
+        if mode == "Triaxial":
+            frames = 40
+            duration *= 2.0
+        props["FrameInterval"] = duration / frames
+        props["NumberOfFrames"] = frames
+    test = _filter("DEMLoadTest")(Input=model_source, Mode=mode, **props)
+    times = list(test.TimestepValues) or [0.0]
+    if stop_when_done and mode != "Off":
+        for k, t in enumerate(times):
+            if k == 0 and len(times) > 1:
+                continue
+            test.UpdatePipeline(t)
+            if progress:
+                progress(k, test)
+            if read_only(test, "Stage") == "done":
+                break
+    else:
+        test.UpdatePipeline(times[-1])
+        if progress:
+            progress(len(times) - 1, test)
+    status = read_only(test, "Status")
+    if test.GetDataInformation().GetNumberOfPoints() == 0:
+        raise RuntimeError("DEM Load Test (%s) gave no output: %s" % (mode, status))
+    return test, fetch_history(test)
+
+
+def ucs_test(cemented_source, axis="Z", **props):
+    """Unconfined compression: returns a dict with ucs (Pa, Peak Stress), E (Pa), nu,
+    the broken bonds, the proxy and the history. props go to run_test."""
+    test, history = run_test(cemented_source, "Compression", Axis=axis, **props)
+    result = {"proxy": test, "history": history, "ucs": float(read_only(test, "PeakStress")),
+              "broken_bonds": int(read_only(test, "BrokenBonds")), "bonds": int(read_only(test, "Bonds"))}
+    try:
+        result["E"], result["nu"] = elastic_constants(history, axis)
+    except ValueError:
+        result["E"], result["nu"] = float("nan"), float("nan")
+    return result
+
+
+def tension_test(cemented_source, axis="Z", **props):
+    """Direct tension: returns a dict with tensile_strength (Pa, magnitude of the largest
+    pull), the broken bonds, the proxy and the history. props go to run_test."""
+    np = _np()
+    test, history = run_test(cemented_source, "Tension", Axis=axis, **props)
+    rows = _shear_rows(history)
+    pull = float(-np.min(history["Axial Stress (Pa)"][rows])) if rows.any() else 0.0
+    peak = abs(float(read_only(test, "PeakStress")))
+    return {"proxy": test, "history": history, "tensile_strength": max(pull, peak),
+            "broken_bonds": int(read_only(test, "BrokenBonds")), "bonds": int(read_only(test, "Bonds"))}
+
+
+def triaxial_series(cemented_source, confining_stresses, delete=True, progress=None, **props):
+    """Triaxial tests on one cemented model at each confining stress, and the envelope.
+
+    props go to run_test (Mode Triaxial). Returns (results, (cohesion_Pa,
+    friction_angle_deg)) with results a list of dicts: confining (Pa), peak_axial
+    (sigma1 at failure, Pa), peak_deviator (Pa), broken_bonds, history. The envelope is
+    fit_mohr_coulomb over (confining, peak_axial); it is (nan, nan) when it cannot be
+    fitted (fewer than two tests, or strength falling with confinement). With delete
+    (default) each test's proxy is deleted after its history is fetched.
+    """
+    results = []
+    for s3 in confining_stresses:
+        test, history = run_test(cemented_source, "Triaxial", ConfiningStress=float(s3),
+                                 progress=progress, **props)
+        peak_axial, peak_dev = peak_values(history)
+        results.append({"confining": float(s3), "peak_axial": peak_axial, "peak_deviator": peak_dev,
+                        "broken_bonds": int(read_only(test, "BrokenBonds")), "history": history,
+                        "stage": read_only(test, "Stage")})
+        if delete:
+            _simple.Delete(test)
+        else:
+            results[-1]["proxy"] = test
+    try:
+        envelope = fit_mohr_coulomb([r["confining"] for r in results], [r["peak_axial"] for r in results])
+    except ValueError:
+        envelope = (float("nan"), float("nan"))
+    return results, envelope

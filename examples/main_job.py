@@ -1,20 +1,37 @@
-"""RockDEM main job (pvbatch): build the default specimen's particle pack, densify it,
-print its porosity and render it with particles drawn as spheres.
+"""RockDEM main job (pvbatch): the complete workflow on the default specimen.
 
     xvfb-run -a pvbatch examples/main_job.py [--elements N] [--output DIR]
 
-The plugin is taken from $ROCKDEM_PLUGIN, or from the default build tree.
-Writes DIR/pack.png (the pack as spheres coloured by radius, with the domain box) and
-DIR/pack_summary.csv (one row per stage: elements, porosity).
+pack (Add/Grow) -> settle under gravity (Mode Off) -> isotropic consolidation (densify)
+-> cement (DEM Cement) -> relax (Mode Off, no gravity) -> unconfined compression (Mode
+Compression, Axis Z). Prints the porosity, UCS (Peak Stress), Young's modulus, Poisson's
+ratio, broken bonds and the timing of each stage. See Documentation/Workflow.md.
+
+The plugin is taken from $ROCKDEM_PLUGIN, or from the default build tree. Writes, in DIR:
+pack.png (the pack as spheres coloured by radius, with the domain box), pack_summary.csv
+(one row per pack stage: elements, porosity), history.csv (the compression test's
+History table), stress_strain.png (the DEM Test chart), broken.png (the specimen after the
+test, spheres coloured by displacement, broken bonds in red), results.csv (one row: the
+measured values and timings).
 """
 import argparse
 import os
 import sys
+import time
 
 from paraview.simple import *  # noqa: F401,F403
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE_DIR = os.path.dirname(HERE)
+
+
+# Material and test settings (Documentation/Workflow.md says why).
+MODULUS = 1e8          # Pa: grain Young's modulus and Bond Modulus (soft: a long timestep)
+TENSILE = 5e5          # Pa: bond tensile strength
+COHESION = 1e6         # Pa: bond cohesion
+CONFINING = 1e4        # Pa: isotropic consolidation before cementing (low: released at relax)
+RATE_FACTOR = 16.0     # x the Suggested Strain Rate (Press.md: E within 0.3 % at 16x)
+MAX_STRAIN = 0.025     # past the peak (about 1.5 %)
 
 
 def plugin_path():
@@ -27,7 +44,8 @@ def plugin_path():
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--elements", type=int, default=12000,
-                        help="Initial Elements of the default specimen (count)")
+                        help="Initial Elements of the default specimen (count); below 12000 the "
+                             "box is shrunk in proportion so the grains stay 0.75-1.5 mm")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results"),
                         help="folder for the picture and the summary")
     args = parser.parse_args()
@@ -37,10 +55,23 @@ def main():
     import rockdem
 
     # Default laboratory specimen: a 50 x 50 x 100 mm box of 0.75-1.5 mm radius grains.
-    pack = DEMPackSource(XDimension=0.05, YDimension=0.05, ZDimension=0.10,
+    # Fewer elements (the smoke test's 800) shrink the box by (N / 12000)^(1/3).
+    scale = min(1.0, (args.elements / 12000.0) ** (1.0 / 3.0))
+    size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
+    timings = []
+    clock = [time.time()]
+
+    def lap(stage):
+        now = time.time()
+        timings.append((stage, now - clock[0]))
+        print("[%s: %.1f s]" % (stage, now - clock[0]), flush=True)
+        clock[0] = now
+
+    # Soft grains (E 1e8 Pa) keep the timestep long; see Documentation/Workflow.md.
+    pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
                          InitialElements=args.elements, MinimumSize=0.00075, MaximumSize=0.0015,
                          TargetPorosity=0.35, RandomSeed=1,
-                         Density=2650.0, YoungsModulus=10e9, PoissonsRatio=0.25)
+                         Density=2650.0, YoungsModulus=MODULUS, PoissonsRatio=0.25)
     rows = []
 
     def record(stage):
@@ -63,6 +94,7 @@ def main():
     pack.InvokeCommand("GrowElements")
     record("grow elements")
 
+    lap("pack")
     summary = os.path.join(args.output, "pack_summary.csv")
     with open(summary + ".tmp", "w") as f:
         f.write("stage,elements,porosity\n")
@@ -95,7 +127,113 @@ def main():
     SaveScreenshot(picture, view, ImageResolution=[1000, 1200])
     final = rows[-1]
     print("Current Porosity: %.4f with %d elements; picture: %s; summary: %s"
-          % (final[2], final[1], picture, summary))
+          % (final[2], final[1], picture, summary), flush=True)
+    lap("pack picture")
+    test_workflow(args, pack, rockdem, lap, timings, view)
+
+
+def test_workflow(args, pack, rockdem, lap, timings, view):
+    """Settle, consolidate, cement, relax, compress; write the history, chart, picture."""
+    from paraview import servermanager
+    safety = 0.3
+    # 1. settle under gravity (Mode Off): the grains drop onto the floor and each other.
+    settle = DEMLoadTest(Input=pack, FrameInterval=0.002, NumberOfFrames=5, TimestepSafety=safety)
+    settle.UpdatePipeline(settle.TimestepValues[-1])
+    print("settled:      porosity %.4f, contacts %d, %s" % (
+        rockdem.read_only(settle, "CurrentPorosity"), rockdem.read_only(settle, "NumberOfContacts"),
+        rockdem.read_only(settle, "SolverPath")), flush=True)
+    lap("settle")
+    # 2. isotropic consolidation: the random pack is loose (porosity ~0.6); the servo walls
+    # squeeze it to CONFINING so the cement finds a dense contact network.
+    consolidate = DEMLoadTest(Input=settle, Gravity=[0, 0, 0], Mode="Isotropic", ConfiningStress=CONFINING,
+                              FrameInterval=0.002, NumberOfFrames=40, TimestepSafety=safety,
+                              SampleInterval=200)
+    for t in list(consolidate.TimestepValues)[1:]:
+        consolidate.UpdatePipeline(t)
+        if rockdem.read_only(consolidate, "Stage") == "done":
+            break
+    suggested = rockdem.read_only(consolidate, "SuggestedStrainRate")
+    print("consolidated: stage %s at t = %.4g s, mean stress %.4g Pa, Suggested Strain Rate %.3g 1/s"
+          % (rockdem.read_only(consolidate, "Stage"), t, rockdem.read_only(consolidate, "AxialStress"), suggested),
+          flush=True)
+    lap("consolidate")
+    # 3. cement: parallel bonds between touching / nearly touching grains.
+    cement = DEMCement(Input=consolidate, BondModulus=MODULUS, TensileStrength=TENSILE, Cohesion=COHESION,
+                       StrengthScatter=0.2)
+    cement.UpdatePipeline()
+    bonds = rockdem.read_only(cement, "Bonds")
+    print("cemented:     %s" % rockdem.read_only(cement, "LastMessage"), flush=True)
+    # 4. relax: walls back at the box, no gravity, so the stress locked in at cementing
+    # is released before the test (Press.md).
+    relax = DEMLoadTest(Input=cement, Gravity=[0, 0, 0], FrameInterval=0.001, NumberOfFrames=2,
+                        TimestepSafety=safety)
+    relax.UpdatePipeline(relax.TimestepValues[-1])
+    print("relaxed:      broken bonds %d of %d" % (rockdem.read_only(relax, "BrokenBonds"), bonds), flush=True)
+    lap("cement + relax")
+    # 5. unconfined compression along Z at RATE_FACTOR x the Suggested Strain Rate.
+    rate = RATE_FACTOR * suggested
+    frames = 20 if args.elements >= 4000 else 10
+    history_file = os.path.join(args.output, "history.csv")
+
+    def progress(k, lt):
+        print("compression frame %2d: axial strain %.4f, axial stress %.4g Pa, peak %.4g Pa, broken %d"
+              % (k, rockdem.read_only(lt, "AxialStrain"), rockdem.read_only(lt, "AxialStress"),
+                 rockdem.read_only(lt, "PeakStress"), rockdem.read_only(lt, "BrokenBonds")), flush=True)
+
+    duration = 1.02 * MAX_STRAIN / rate
+    result = rockdem.ucs_test(relax, StrainRate=rate, MaxStrain=MAX_STRAIN, TimestepSafety=safety,
+                              FrameInterval=duration / frames, NumberOfFrames=frames,
+                              SampleInterval=50, HistoryFile=history_file, progress=progress)
+    press = result["proxy"]
+    lap("compression")
+    ucs, e_mod, nu = result["ucs"], result["E"], result["nu"]
+    broken = result["broken_bonds"]
+    print("UCS (Peak Stress): %.4g Pa; Young's modulus: %.4g Pa; Poisson's ratio: %.3f; "
+          "broken bonds: %d of %d (%d tension, %d shear); strain rate %.3g 1/s (%g x suggested)"
+          % (ucs, e_mod, nu, broken, bonds, rockdem.read_only(press, "BrokenInTension"),
+             rockdem.read_only(press, "BrokenInShear"), rate, RATE_FACTOR), flush=True)
+
+    # Stress-strain chart (ParaView's DEM Test chart).
+    chart = rockdem.show_test_chart(press)
+    chart.ViewSize = [900, 600]
+    chart_png = os.path.join(args.output, "stress_strain.png")
+    SaveScreenshot(chart_png, chart, ImageResolution=[900, 600])
+    print("chart: %s; history: %s" % (chart_png, history_file))
+
+    # The broken specimen: grains as spheres, broken bonds as red lines.
+    Hide(pack, view)
+    for proxy in list(GetSources().values()):
+        try:
+            Hide(proxy, view)
+        except Exception:
+            pass
+    # The view shows its own time: the specimen at the end of the test.
+    view.ViewTime = list(press.TimestepValues)[-1]
+    particles = rockdem.show_particles(press, view, color_by="Radius")
+    particles.Opacity = 0.25  # see the broken bonds inside the specimen
+    broken_bonds = Threshold(Input=press, Scalars=["CELLS", "Broken"], LowerThreshold=1, UpperThreshold=1,
+                             ThresholdMethod="Between")
+    shown = Show(broken_bonds, view)
+    shown.SetRepresentationType("Wireframe")
+    shown.ColorArrayName = ["CELLS", ""]
+    shown.AmbientColor = [0.9, 0.0, 0.0]
+    shown.DiffuseColor = [0.9, 0.0, 0.0]
+    shown.LineWidth = 3.0
+    view.ResetCamera()
+    Render(view)
+    broken_png = os.path.join(args.output, "broken.png")
+    SaveScreenshot(broken_png, view, ImageResolution=[1000, 1200])
+    print("broken specimen picture: %s" % broken_png)
+    lap("pictures")
+
+    results = os.path.join(args.output, "results.csv")
+    with open(results, "w") as f:
+        f.write("elements,bonds,ucs_Pa,youngs_modulus_Pa,poissons_ratio,broken_bonds,strain_rate_per_s,"
+                + ",".join("time_%s_s" % n.replace(" ", "_").replace("+", "and") for n, _ in timings) + "\n")
+        f.write("%d,%d,%.6g,%.6g,%.4f,%d,%.4g," % (pack.GetDataInformation().GetNumberOfPoints(),
+                                                   bonds, ucs, e_mod, nu, broken, rate)
+                + ",".join("%.1f" % t for _, t in timings) + "\n")
+    print("total %.1f s; results: %s" % (sum(t for _, t in timings), results))
 
 
 if __name__ == "__main__":

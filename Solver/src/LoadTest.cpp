@@ -133,6 +133,19 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
     const Wall& low = model.walls[2 * k];
     const Wall& high = model.walls[2 * k + 1];
     t.initialLength[k] = high.position - low.position;
+    const bool unwalledSide = (settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) &&
+      k != a && !(d.section2D && k == 2) && !p.empty();
+    if (unwalledSide) {
+      // Without side walls the lateral size is measured from the particles' extent
+      // (Simulation::specimenLengths): start from the same measure.
+      double lo = std::numeric_limits<double>::max();
+      double hi = -lo;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        lo = std::min(lo, p.position[i][k] - p.radius[i]);
+        hi = std::max(hi, p.position[i][k] + p.radius[i]);
+      }
+      t.initialLength[k] = hi - lo;
+    }
   }
   t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
   if (settings.mode == TestMode::Tension) {
