@@ -12,7 +12,7 @@ PKGS=(
   libeigen3-dev libhdf5-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
   libgtest-dev googletest
-  xvfb python3-numpy
+  xvfb python3-numpy python3-matplotlib
 )
 missing=()
 for p in "${PKGS[@]}"; do
