@@ -5,8 +5,8 @@
     scripts/plot_accuracy.py sweep.csv [-o Documentation/images/timestep_accuracy.png]
 
 Top: errors against Timestep Safety (log-log): restitution error of a sphere-wall impact
-(e = 0.5 requested), peak-force error of the elastic impact against the Hertz closed form,
-worst relative energy drift of an undamped elastic system. Middle: cost in steps (steps in
+(e = 0.5 requested), restitution error of the elastic impact (e = 1), its peak-force error
+against the Hertz closed form, worst relative energy drift of an undamped elastic system. Middle: cost in steps (steps in
 contact per collision; steps of the fixed-model-time energy and settling runs). Bottom: wall
 seconds. A red line marks the smallest safety at which a run went unstable
 (dem::InstabilityError); the grey dotted lines mark the default (0.1) and the cap without
@@ -18,7 +18,12 @@ import math
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:  # e.g. a pyenv/venv python3 first on PATH: use the Debian one
+    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    sys.exit("matplotlib is missing: apt-get install python3-matplotlib")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -52,6 +57,8 @@ def main():
 
     rows = sorted(read(args.csv), key=lambda r: num(r, "safety"))
     s = [num(r, "safety") for r in rows]
+    # "energy-gain" (the elastic impact came back faster than it went in) is drawn as a
+    # point of its own, like an unstable one.
     impact_ok = [r["impact_status"] == "ok" for r in rows]
     energy_ok = [r["energy_status"] == "ok" for r in rows]
     settle_ok = [r["settle_status"] == "ok" for r in rows]
@@ -78,6 +85,10 @@ def main():
         return line
 
     series(ax_err, "restitution_error", impact_ok, "restitution error |e - 0.5| (impact, 1 m/s)", "o-", floor=FLOOR)
+    if "restitution_elastic" in rows[0]:
+        for r in rows:
+            r["elastic_error"] = str(abs(num(r, "restitution_elastic") - 1.0))
+        series(ax_err, "elastic_error", impact_ok, "elastic impact |e - 1| (e = 1 requested)", "v--", floor=FLOOR)
     series(ax_err, "peak_force_error", impact_ok, "peak-force error vs Hertz (elastic impact)", "s-", floor=FLOOR)
     series(ax_err, "energy_drift", energy_ok, "relative energy drift (40 elastic spheres)", "^-", floor=FLOOR)
     ax_err.axhline(0.005, color="tab:blue", ls=":", lw=1)
@@ -85,7 +96,7 @@ def main():
     ax_err.set_yscale("log")
     ax_err.set_ylabel("error (relative; restitution absolute)")
     ax_err.set_title("RockDEM: accuracy and cost against Timestep Safety\n"
-                     "(x = that run failed or went unstable)")
+                     "(x = that run went unstable, or the impact gained energy)")
 
     series(ax_steps, "steps_per_collision", impact_ok, "steps in contact per collision (impact)", "o-")
     series(ax_steps, "energy_steps", energy_ok, "steps, energy run (fixed model time)", "^-")
@@ -110,11 +121,12 @@ def main():
             ax.axvline(first_unstable, color="red", lw=1.8)
             ax.axvspan(first_unstable, max(s) * 1.15, color="red", alpha=0.07)
         ax.legend(fontsize=8, loc="best")
-    ax_err.text(0.1, ax_err.get_ylim()[1], " default 0.1", fontsize=8, color="grey", va="top")
-    ax_err.text(1.0, ax_err.get_ylim()[1], " cap 1.0", fontsize=8, color="grey", va="top")
+    tr = ax_err.get_xaxis_transform()  # x in data, y in axes fraction
+    ax_err.text(0.1, 0.02, " default 0.1", fontsize=8, color="grey", va="bottom", transform=tr)
+    ax_err.text(1.0, 0.02, " cap 1.0", fontsize=8, color="grey", va="bottom", transform=tr)
     if first_unstable is not None:
-        ax_steps.text(first_unstable, ax_steps.get_ylim()[1], f" unstable from {first_unstable:g}",
-                      fontsize=9, color="red", va="top")
+        ax_steps.text(first_unstable, 0.97, f" unstable from {first_unstable:g}", fontsize=9,
+                      color="red", va="top", transform=ax_steps.get_xaxis_transform())
     ax_sec.set_xlim(min(s) / 1.15, max(s) * 1.15)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

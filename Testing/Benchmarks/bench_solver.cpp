@@ -15,8 +15,8 @@
 // Only advance() is timed (pack building and the Simulation constructor are not).
 //
 //   rockdem_bench_solver [--sizes 10000,100000,1000000] [--steps N] [--packs mono,poly,lattice]
-//                        [--threads 1,2] [--damping 0.7] [--sort] [--repeat R] [--csv FILE]
-//                        [--quick]
+//                        [--threads 1,2] [--damping 0.7] [--restitution 0.5] [--sort]
+//                        [--repeat R] [--csv FILE] [--quick]
 //   rockdem_bench_solver --sweep [--csv FILE] [--sweep-particles 5000] [--safeties 0.05,0.1,...]
 //   rockdem_bench_solver --write-pack FILE --pack poly --sizes 10000
 //
@@ -33,8 +33,9 @@
 // Sweep (--sweep): for each Timestep Safety s (above 1 with the test-only
 // allowUnsafeTimestep switch and requestedTimestep = s x critical):
 //   (a) a 1 mm sphere hitting a wall at 1 m/s: delivered restitution for e = 0.5 (error =
-//       |delivered - 0.5|), peak force of an elastic (e = 1) impact against the Hertz closed
-//       form (PHYSICS.md s.1), steps in contact per collision, wall seconds;
+//       |delivered - 0.5|), restitution and peak force of an elastic (e = 1) impact, the
+//       latter against the Hertz closed form (PHYSICS.md s.1), steps in contact per
+//       collision, wall seconds;
 //   (b) 40 elastic frictionless spheres (e = 1, no gravity, no damping) in a 4 cm box for a
 //       fixed model time (1e5 steps at s = 0.05): worst relative drift of the total energy;
 //   (c) a settling pack (poly, --sweep-particles, placed in a flat region W x W x W/8 in
@@ -82,6 +83,8 @@ constexpr double kRestitution = 0.5;
 constexpr double kFriction = 0.5;
 constexpr double kPlacementPorosity = 0.75; // void fraction of the region the pack is placed in
 constexpr double kLatticeOverlap = 2.0e-3;  // lattice spacing 2r (1 - this)
+/// Restitution of the throughput / --write-pack models (--restitution; the sweep sets its own).
+double gRestitution = kRestitution;
 
 struct Options {
   std::vector<long> sizes{ 10000, 100000, 1000000 };
@@ -122,9 +125,9 @@ std::vector<T> parseList(const char* text)
 {
   std::fprintf(stderr,
     "usage: %s [--sizes N1,N2,...] [--steps N] [--packs mono,poly,lattice] [--threads 1,2]\n"
-    "          [--damping A] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
+    "          [--damping A] [--restitution E] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
     "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
-    "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--sort]\n",
+    "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--restitution E] [--sort]\n",
     argv0, argv0, argv0);
   std::exit(2);
 }
@@ -145,6 +148,8 @@ Options parse(int argc, char** argv)
       o.pack = argv[++i];
     } else if (a == "--threads" && hasValue) {
       o.threads = parseList<int>(argv[++i]);
+    } else if (a == "--restitution" && hasValue) {
+      gRestitution = std::atof(argv[++i]);
     } else if (a == "--damping" && hasValue) {
       o.damping = std::atof(argv[++i]);
     } else if (a == "--repeat" && hasValue) {
@@ -253,7 +258,7 @@ void setMaterial(dem::Model& m)
   m.material.density = kDensity;
   m.material.youngsModulus = kYoung;
   m.material.poissonsRatio = kPoisson;
-  m.material.restitution = kRestitution;
+  m.material.restitution = gRestitution;
   m.material.friction = kFriction;
   m.material.rollingFriction = 0.0;
   m.gravity = dem::Vec3(0.0, 0.0, -9.81);
@@ -420,7 +425,7 @@ int runThroughput(const Options& o)
   }
   std::printf("RockDEM solver throughput: Hertz-Mindlin, E %.3g Pa, nu %.2f, rho %.0f, e %.2f, mu %.2f, "
               "damping %.2f, gravity 9.81, Timestep Safety 0.1%s; %d cores\n",
-              kYoung, kPoisson, kDensity, kRestitution, kFriction, o.damping,
+              kYoung, kPoisson, kDensity, gRestitution, kFriction, o.damping,
               o.sort ? ", particles sorted spatially" : "", coreCount());
   std::printf("%-8s %9s %7s %-22s %6s %10s %8s %12s %9s %8s %8s %8s %7s\n", "pack", "N", "threads",
               "path", "steps", "dt(s)", "time(s)", "p-steps/s", "contacts", "model", "solver",
@@ -726,7 +731,7 @@ int runSweep(const Options& o)
   std::fprintf(stderr, "sweep: impact reference Fmax %.6g N, contact time %.6g s; settle %ld particles "
                "for %.3g s; %d cores\n", fmax, tc, scale.settleParticles, scale.settleTime, coreCount());
   csv.line("safety,unsafe_switch,impact_timestep_s,restitution_requested,restitution_delivered,"
-           "restitution_error,peak_force_N,peak_force_reference_N,peak_force_error,"
+           "restitution_error,restitution_elastic,peak_force_N,peak_force_reference_N,peak_force_error,"
            "steps_per_collision,collision_time_steps_reference,impact_seconds,impact_status,"
            "energy_drift,energy_steps,energy_seconds,energy_status,settle_particles,"
            "settle_steps,settle_seconds,settle_kinetic_J,settle_porosity,settle_unbalanced_ratio,"
@@ -747,10 +752,10 @@ int runSweep(const Options& o)
       energy.status == "ok" && settled.status == "ok";
     char line[1024];
     std::snprintf(line, sizeof(line),
-                  "%.4g,%d,%.6g,%.3g,%.6g,%.4g,%.6g,%.6g,%.4g,%ld,%.4g,%.4f,%s,%.4g,%ld,%.4f,%s,"
+                  "%.4g,%d,%.6g,%.3g,%.6g,%.4g,%.6g,%.6g,%.6g,%.4g,%ld,%.4g,%.4f,%s,%.4g,%ld,%.4f,%s,"
                   "%ld,%ld,%.4f,%.6g,%.5f,%.4g,%s,%d",
                   s, s > 1.0 ? 1 : 0, elastic.timestep, kRestitution, damped.restitution,
-                  std::abs(damped.restitution - kRestitution), elastic.maxForce, fmax,
+                  std::abs(damped.restitution - kRestitution), elastic.restitution, elastic.maxForce, fmax,
                   std::abs(elastic.maxForce - fmax) / fmax, elastic.stepsInContact,
                   elastic.timestep > 0.0 ? tc / elastic.timestep : 0.0, impactSeconds,
                   impactStatus.c_str(), energy.drift, energy.steps, energy.seconds,
