@@ -71,19 +71,33 @@ TEST_CHART_STRESSES = ("Axial Stress (MPa)", "Lateral Stress (MPa)", "Deviator S
 TEST_CHART_RIGHT = "Volumetric Strain (%)"
 
 
-def show_test_chart(load_test, view=None):
+def show_test_chart(load_test, view=None, shear_only=True):
     """Plot a DEM Load Test's History (output port 1) as the DEM Test chart.
 
     Axial, lateral and deviator stress (MPa) against axial strain (%), and volumetric
-    strain (%) on the right-hand axis. Creates an XYChartView unless one is given;
-    returns the view.
+    strain (%) on the right-hand axis. Strains count from the start of shearing, so with
+    shear_only (default) a test that has a shear stage plots only its shear rows (Stage
+    2, picked by an ExtractSelection with the row query ``Stage == 2``): a triaxial
+    test's consolidation rows would otherwise run to the consolidation strain and back.
+    A test without shear rows (Isotropic) plots every row. The chart shows the test as
+    far as it has been run (or to its last time step when it has not been run yet).
+    Creates an XYChartView unless one is given; returns the view.
     """
     view = view or _simple.CreateView("XYChartView")
     times = list(load_test.TimestepValues or [])
     if times:
-        # A view shows its own time (0 in a fresh pvbatch view): the whole test is at the end.
-        view.ViewTime = times[-1]
-    display = _simple.Show(_simple.OutputPort(load_test, 1), view, "XYChartRepresentation")
+        # A view shows its own time (0 in a fresh pvbatch view): ask for the frame the
+        # test has reached, so showing the chart does not run the test further.
+        reached = float(read_only(load_test, "ModelTime") or 0.0)
+        later = [t for t in times if t >= reached - 1e-12 * max(1.0, abs(reached))]
+        view.ViewTime = later[0] if reached > times[0] and later else times[-1]
+    history = _simple.OutputPort(load_test, 1)
+    if shear_only:
+        stage = fetch_history(load_test).get("Stage")
+        if stage is not None and (_np().asarray(stage) == STAGE_SHEAR).any():
+            query = _simple.SelectionQuerySource(ElementType="Row Data", QueryString="Stage == %d" % STAGE_SHEAR)
+            history = _simple.ExtractSelection(Input=history, Selection=query)
+    display = _simple.Show(history, view, "XYChartRepresentation")
     display.UseIndexForXAxis = 0
     display.XArrayName = "Axial Strain (%)"
     display.SeriesVisibility = list(TEST_CHART_STRESSES) + [TEST_CHART_RIGHT]
@@ -92,6 +106,9 @@ def show_test_chart(load_test, view=None):
         corners += [name, "0"]
     corners += [TEST_CHART_RIGHT, "1"]
     display.SeriesPlotCorner = corners
+    colours = {"Axial Stress (MPa)": (0.84, 0.15, 0.16), "Lateral Stress (MPa)": (0.12, 0.47, 0.71),
+               "Deviator Stress (MPa)": (1.0, 0.5, 0.05), TEST_CHART_RIGHT: (0.17, 0.63, 0.17)}
+    display.SeriesColor = [v for name, rgb in colours.items() for v in [name] + ["%g" % c for c in rgb]]
     view.BottomAxisTitle = "Axial Strain (%)"
     view.LeftAxisTitle = "Stress (MPa)"
     view.RightAxisTitle = "Volumetric Strain (%)"

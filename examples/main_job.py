@@ -43,9 +43,9 @@ def plugin_path():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--elements", type=int, default=12000,
-                        help="Initial Elements of the default specimen (count); below 12000 the "
-                             "box is shrunk in proportion so the grains stay 0.75-1.5 mm")
+    parser.add_argument("--elements", type=int, default=16000,
+                        help="Initial Elements of the default specimen (count); below 16000 the "
+                             "box is shrunk in proportion so the grains stay 0.68-1.36 mm")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results"),
                         help="folder for the picture and the summary")
     args = parser.parse_args()
@@ -54,9 +54,10 @@ def main():
     LoadPlugin(plugin_path(), remote=False, ns=globals())
     import rockdem
 
-    # Default laboratory specimen: a 50 x 50 x 100 mm box of 0.75-1.5 mm radius grains.
-    # Fewer elements (the smoke test's 800) shrink the box by (N / 12000)^(1/3).
-    scale = min(1.0, (args.elements / 12000.0) ** (1.0 / 3.0))
+    # Default laboratory specimen: a 50 x 50 x 100 mm box of 0.68-1.36 mm radius grains;
+    # Add and Grow fill it with about 20k (16,000 placed, then Add/Grow twice).
+    # Fewer elements (the smoke test's 800) shrink the box by (N / 16000)^(1/3).
+    scale = min(1.0, (args.elements / 16000.0) ** (1.0 / 3.0))
     size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
     timings = []
     clock = [time.time()]
@@ -69,7 +70,7 @@ def main():
 
     # Soft grains (E 1e8 Pa) keep the timestep long; see Documentation/Workflow.md.
     pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
-                         InitialElements=args.elements, MinimumSize=0.00075, MaximumSize=0.0015,
+                         InitialElements=args.elements, MinimumSize=0.00068, MaximumSize=0.00136,
                          TargetPorosity=0.35, RandomSeed=1,
                          Density=2650.0, YoungsModulus=MODULUS, PoissonsRatio=0.25)
     rows = []

@@ -158,6 +158,18 @@ peak_row = max(cols["Axial Stress (Pa)"])
 c.check(tri.PeakStress >= peak_row * (1 - 1e-12) and tri.PeakStress > SIGMA3,
         "Peak Stress %.5g Pa is the largest sampled axial stress (%.5g Pa)" % (tri.PeakStress, peak_row))
 
+# The chart of a triaxial test plots the shear rows only (strains count from the start
+# of shear), and asks for the frame the test reached, not a later one.
+step_before = rockdem.read_only(tri, "ModelTime")
+view = rockdem.show_test_chart(tri)
+shown = [p for p in GetSources().values() if p.GetXMLName() == "ExtractSelection"]
+plotted = servermanager.Fetch(shown[-1]) if shown else None
+plotted_stage = [plotted.GetColumnByName("Stage").GetValue(r) for r in range(plotted.GetNumberOfRows())] if plotted else []
+c.check(plotted_stage and set(plotted_stage) == {2.0} and len(plotted_stage) == len(shear_rows),
+        "triaxial chart plots the %d shear rows only (of %d)" % (len(plotted_stage), len(cols["Stage"])))
+c.check(rockdem.read_only(tri, "ModelTime") == step_before, "showing the chart did not run the test further")
+Delete(view)
+
 print("elapsed %.1f s" % (time.time() - T0))
 # (d) Mode Off restores the six walls at the box.
 tri.Mode = "Off"
