@@ -586,6 +586,7 @@ TEST(SeedFractures, SeededSpecimenInTensionFailsAlongTheSeededPlane)
   const double z0 = lo + 0.4 * (hi - lo);
   const double xTip = xlo + 0.6 * (xhi - xlo);
   const double big = 1.0;
+  Model intact = m; // control: the same specimen without the seeded crack
   const SeedReport seeded = seedFractures(m, { { Vec3(xlo - big, -big, z0), Vec3(xTip, -big, z0),
                                                 Vec3(xTip, big, z0), Vec3(xlo - big, big, z0) } });
   ASSERT_GT(seeded.seeded, 10u);
@@ -667,4 +668,18 @@ TEST(SeedFractures, SeededSpecimenInTensionFailsAlongTheSeededPlane)
   EXPECT_GT(opening, 0.5 * platen) << "the parts above and below separate";
   EXPECT_GT(static_cast<double>(near) / fresh, 0.6) << "new breaks lie along the seeded plane";
   EXPECT_EQ(countBonds(m.bonds).inherited, bondsBefore) << "seeded bonds stay inherited";
+
+  // Control: the intact specimen carries a larger pull (the seeded crack is a weakness).
+  startLoadTest(intact, s);
+  Simulation control(intact);
+  while (intact.test.stage != TestStage::Done) {
+    control.advance(1000);
+    if (!intact.test.history.empty() && intact.test.peakStress > 0.0 &&
+        -intact.test.history.back()[18] < 0.3 * intact.test.peakStress) {
+      break;
+    }
+  }
+  std::printf("[seeded tension] control without the seeded crack: peak pull %.4g Pa (seeded %.4g Pa, %.0f %%)\n",
+    intact.test.peakStress, m.test.peakStress, 100.0 * m.test.peakStress / intact.test.peakStress);
+  EXPECT_LT(m.test.peakStress, 0.8 * intact.test.peakStress);
 }
