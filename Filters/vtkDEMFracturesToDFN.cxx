@@ -1,7 +1,6 @@
 #include "vtkDEMFracturesToDFN.h"
 
 #include "vtkDEMModelConversion.h"
-#include "vtkDEMPipelineTime.h"
 
 #include "dem/Errors.h"
 #include "dem/Fractures.h"
@@ -39,13 +38,13 @@ vtkNew<vtkDoubleArray> NewDoubleArray(const char* name, int components, vtkIdTyp
   return a;
 }
 
-/// Stamps the time asked for on an output (the DFN does not depend on time).
-void StampTime(vtkInformation* outInfo, vtkDataObject* output)
+/// Stamps an output with the time of the model it was computed from.
+void StampTime(vtkDataObject* input, vtkDataObject* output)
 {
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  if (input && input->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
   {
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
-      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+    output->GetInformation()->Set(
+      vtkDataObject::DATA_TIME_STEP(), input->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
   }
   else
   {
@@ -83,27 +82,6 @@ int vtkDEMFracturesToDFN::FillInputPortInformation(int, vtkInformation* info)
 int vtkDEMFracturesToDFN::FillOutputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 1 ? "vtkTable" : "vtkPolyData");
-  return 1;
-}
-
-int vtkDEMFracturesToDFN::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
-  // An instantaneous stage: the upstream times are not ours to publish.
-  for (int port = 0; port < 2; ++port)
-  {
-    vtkInformation* outInfo = outputVector->GetInformationObject(port);
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-  }
-  return 1;
-}
-
-int vtkDEMFracturesToDFN::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
-{
-  // The broken bonds where the upstream run ended (its last time step).
-  rockdem::RequestLastUpstreamTime(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
@@ -243,8 +221,8 @@ int vtkDEMFracturesToDFN::RequestData(
     table->Initialize();
     return 0;
   }
-  StampTime(outputVector->GetInformationObject(0), discs);
-  StampTime(outputVector->GetInformationObject(1), table);
+  StampTime(input, discs);
+  StampTime(input, table);
   return 1;
 }
 

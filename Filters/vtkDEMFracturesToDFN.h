@@ -8,8 +8,10 @@
  * fitted through each (principal axes of the crack positions, weighted by bond area) and
  * a planar cluster becomes a disc; see dem/Fractures.h and Documentation/Fractures.md.
  *
- * Input: a RockDEM model (vtkDEMModelConversion.h); a stepped upstream model (DEM Load
- * Test) is read at its last time step. Output port 0: vtkPolyData, one polygon per disc,
+ * Input: a RockDEM model (vtkDEMModelConversion.h). The export follows time: with a
+ * stepped upstream model (DEM Load Test) it is computed from the model at the time asked
+ * for, so the discs shown match the model shown as the animation plays (the upstream
+ * time steps pass through). Output port 0: vtkPolyData, one polygon per disc,
  * with cell arrays Dip, Azimuth (degrees), Set (0 tensile, 1 shear, 2 inherited), SetName,
  * Radius (m), Area (m^2), Normal (3), Center (m, 3), CrackCount, Planarity. Output port 1:
  * vtkTable, one row per disc: CenterX/Y/Z (m), NormalX/Y/Z, Dip, Azimuth (degrees),
@@ -81,8 +83,6 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int MinimumCracks;

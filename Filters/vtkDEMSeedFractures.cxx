@@ -54,11 +54,9 @@ int vtkDEMSeedFractures::RequestInformation(
 int vtkDEMSeedFractures::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
+  // The model where its upstream run ended; the fractures at the time asked for (a DFN
+  // exported from a load test follows time).
   rockdem::RequestLastUpstreamTime(inputVector[0]->GetInformationObject(0));
-  if (inputVector[1]->GetNumberOfInformationObjects() > 0)
-  {
-    rockdem::RequestLastUpstreamTime(inputVector[1]->GetInformationObject(0));
-  }
   return 1;
 }
 
