@@ -241,6 +241,76 @@ FractureDisc makeDisc(FractureSet set, const PlaneFit& f, const std::vector<Crac
   return d;
 }
 
+/// Every bond as the segment between its particle centres (across a periodic seam: A to
+/// A + the minimum-image branch), for the fill of a disc.
+struct BondSegments {
+  std::vector<Vec3> a, b, mid;
+  std::vector<double> halfLength;
+  std::vector<char> broken;
+};
+
+BondSegments bondSegments(const Model& model)
+{
+  BondSegments out;
+  const Bonds& bonds = model.bonds;
+  const Particles& p = model.particles;
+  std::unordered_map<std::int64_t, std::size_t> slot;
+  slot.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    slot[p.id[i]] = i;
+  }
+  const Domain& d = model.domain;
+  for (std::size_t k = 0; k < bonds.size(); ++k) {
+    const auto ia = slot.find(bonds.idA[k]);
+    const auto ib = slot.find(bonds.idB[k]);
+    if (ia == slot.end() || ib == slot.end()) {
+      throw InputError("A bond joins particle id " +
+        std::to_string(ia == slot.end() ? bonds.idA[k] : bonds.idB[k]) + ", which is not in the model.");
+    }
+    const Vec3& a = p.position[ia->second];
+    Vec3 branch = p.position[ib->second] - a;
+    for (int c = 0; c < 3; ++c) {
+      if (d.periodic[c]) {
+        branch[c] -= d.size[c] * std::nearbyint(branch[c] / d.size[c]);
+      }
+    }
+    out.a.push_back(a);
+    out.b.push_back(a + branch);
+    out.mid.push_back(a + 0.5 * branch);
+    out.halfLength.push_back(0.5 * branch.norm());
+    out.broken.push_back(bonds.broken(k) ? 1 : 0);
+  }
+  return out;
+}
+
+/// Fill of a disc: the fraction of the bonds crossing it (their segment crosses its
+/// plane inside the disc; in 2D inside the trace) that are broken; 0 when none crosses.
+double discFill(const FractureDisc& disc, const BondSegments& seg, bool section2D)
+{
+  std::size_t crossing = 0;
+  std::size_t broken = 0;
+  const Vec3& n = disc.normal;
+  const Vec3& c = disc.center;
+  const double R = disc.radius;
+  for (std::size_t k = 0; k < seg.a.size(); ++k) {
+    if ((seg.mid[k] - c).norm() > R + seg.halfLength[k] + (section2D ? R : 0.0)) {
+      continue;
+    }
+    const double sa = n.dot(seg.a[k] - c);
+    const double sb = n.dot(seg.b[k] - c);
+    if ((sa > 0.0 && sb > 0.0) || (sa < 0.0 && sb < 0.0) || (sa == 0.0 && sb == 0.0)) {
+      continue;
+    }
+    const Vec3 x = seg.a[k] + sa / (sa - sb) * (seg.b[k] - seg.a[k]);
+    const bool inside = section2D ? std::abs(disc.strike.dot(x - c)) <= R : (x - c).norm() <= R;
+    if (inside) {
+      ++crossing;
+      broken += seg.broken[k] ? 1 : 0;
+    }
+  }
+  return crossing ? static_cast<double>(broken) / static_cast<double>(crossing) : 0.0;
+}
+
 /// Plane of three (2D: two) cracks; false when degenerate.
 bool planeThrough(const std::vector<Vec3>& pts, bool section2D, Vec3& normal)
 {
@@ -272,9 +342,10 @@ std::vector<std::size_t> inliers(const std::vector<Crack>& cracks, const std::ve
 
 /// Extracts planes from a non-planar cluster (see extractFractures); the planar parts,
 /// or nothing when the split does not explain the cluster.
+template <typename Accept>
 std::vector<std::vector<std::size_t>> splitIntoPlanes(const std::vector<Crack>& cracks,
   const std::vector<std::size_t>& cluster, const FractureParameters& params, double distance,
-  double shareDistance, bool section2D)
+  double shareDistance, bool section2D, const Accept& accept)
 {
   const double h = 0.5 * distance;
   const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
@@ -325,7 +396,7 @@ std::vector<std::vector<std::size_t>> splitIntoPlanes(const std::vector<Crack>& 
     }
     const std::vector<std::size_t> plane = inliers(cracks, cluster, bestPoint, bestNormal, h);
     for (auto& part : connectedParts(cracks, plane, distance, shareDistance)) {
-      if (part.size() >= minimum && fitPlane(cracks, part, section2D).planarity >= params.minimumPlanarity) {
+      if (part.size() >= minimum && accept(part)) {
         for (std::size_t m : part) {
           if (!assigned[m]) {
             assigned[m] = 1;
@@ -360,6 +431,7 @@ void validate(const FractureParameters& p)
   }
   requireInRange("Minimum Planarity", p.minimumPlanarity, 0.0, 1.0);
   requireNonNegative("Cluster Distance", p.clusterDistance, "m");
+  requireInRange("Minimum Fill", p.minimumFill, 0.0, 1.0);
   if (p.discSides < 3) {
     throw InputError("Disc Sides = " + std::to_string(p.discSides) +
       " is out of range: valid range is [3, inf) (a polygon needs at least three vertices).");
@@ -386,6 +458,7 @@ FractureCounts& FractureCounts::operator+=(const FractureCounts& o)
   discs += o.discs;
   rejectedTooSmall += o.rejectedTooSmall;
   rejectedNonPlanar += o.rejectedNonPlanar;
+  rejectedSparse += o.rejectedSparse;
   splitClusters += o.splitClusters;
   cracksInDiscs += o.cracksInDiscs;
   return *this;
@@ -399,7 +472,8 @@ std::string FractureReport::summary() const
     " (Cluster Distance " + formatValue(clusterDistance) + " m): " + plural(total.discs, "disc", "discs") +
     " emitted, " + std::to_string(total.rejectedTooSmall) + " rejected as too small (fewer than " +
     std::to_string(minimumCracks) + " cracks), " + std::to_string(total.rejectedNonPlanar) +
-    " rejected as non-planar (Planarity below " + formatValue(minimumPlanarity) + ").";
+    " rejected as non-planar (Planarity below " + formatValue(minimumPlanarity) + "), " +
+    std::to_string(total.rejectedSparse) + " rejected as sparse (Fill below " + formatValue(minimumFill) + ").";
   for (int k = 0; k < FractureSetCount; ++k) {
     const FractureCounts& c = sets[static_cast<std::size_t>(k)];
     if (c.brokenBonds == 0) {
@@ -409,9 +483,10 @@ std::string FractureReport::summary() const
       plural(c.brokenBonds, "broken bond", "broken bonds") + ", " + plural(c.clusters, "cluster", "clusters") +
       ", " + plural(c.discs, "disc", "discs") + " emitted (" + std::to_string(c.cracksInDiscs) +
       " cracks in discs), " + std::to_string(c.rejectedTooSmall) + " rejected as too small, " +
-      std::to_string(c.rejectedNonPlanar) + " rejected as non-planar";
+      std::to_string(c.rejectedNonPlanar) + " rejected as non-planar, " + std::to_string(c.rejectedSparse) +
+      " rejected as sparse";
     if (c.splitClusters) {
-      s += ", " + std::to_string(c.splitClusters) + " non-planar split into intersecting planes";
+      s += ", " + std::to_string(c.splitClusters) + " non-planar resolved into planar parts";
     }
     s += ".";
   }
@@ -420,8 +495,9 @@ std::string FractureReport::summary() const
       s += "\nNothing emitted: the model has no broken bonds.";
     } else {
       s += "\nNothing emitted: every cluster was rejected (" + std::to_string(total.rejectedTooSmall) +
-        " too small, " + std::to_string(total.rejectedNonPlanar) +
-        " non-planar); lower Minimum Cracks or Minimum Planarity, or raise Cluster Distance, to accept them.";
+        " too small, " + std::to_string(total.rejectedNonPlanar) + " non-planar, " +
+        std::to_string(total.rejectedSparse) +
+        " sparse); lower Minimum Cracks, Minimum Planarity or Minimum Fill to accept them.";
     }
   }
   return s;
@@ -470,6 +546,7 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   FractureReport& report = out.report;
   report.minimumCracks = params.minimumCracks;
   report.minimumPlanarity = params.minimumPlanarity;
+  report.minimumFill = params.minimumFill;
   const double distance = params.clusterDistance > 0.0 ? params.clusterDistance : DefaultClusterDiameters * meanParticleDiameter(model);
   report.clusterDistance = distance;
   const auto& r = model.particles.radius;
@@ -502,41 +579,74 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
     cracks.push_back(Crack{ b.failurePosition[k], area > 0.0 ? area : 1.0, b.idA[k], b.idB[k], k });
   }
 
+  const BondSegments segments = bondSegments(model);
+  const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
+
   for (int s = 0; s < FractureSetCount; ++s) {
     const FractureSet set = static_cast<FractureSet>(s);
     FractureCounts& c = report.sets[static_cast<std::size_t>(s)];
     c.brokenBonds = members[static_cast<std::size_t>(s)].size();
     std::vector<FractureDisc> discs;
-    std::vector<char> inDisc(cracks.size(), 0);
-    auto emit = [&](const std::vector<std::size_t>& part, const PlaneFit& f) {
-      discs.push_back(makeDisc(set, f, cracks, part, model.domain, params.discSides));
-      for (std::size_t m : part) {
-        if (!inDisc[m]) {
-          inDisc[m] = 1;
-          ++c.cracksInDiscs;
-        }
+    // A disc for a part that is planar and filled enough; false otherwise.
+    enum class Verdict { Emitted, NonPlanar, Sparse };
+    auto tryDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
+      const PlaneFit f = fitPlane(cracks, part, section2D);
+      if (f.planarity < params.minimumPlanarity) {
+        return Verdict::NonPlanar;
       }
+      FractureDisc d = makeDisc(set, f, cracks, part, model.domain, params.discSides);
+      d.fill = discFill(d, segments, section2D);
+      if (d.fill < params.minimumFill) {
+        return Verdict::Sparse;
+      }
+      if (into) {
+        into->push_back(std::move(d));
+      }
+      return Verdict::Emitted;
+    };
+    // Non-planar: perhaps intersecting fractures (splitIntoPlanes). Returns the discs found.
+    auto resolve = [&](const std::vector<std::size_t>& cluster) {
+      std::vector<FractureDisc> found;
+      const auto parts = splitIntoPlanes(cracks, cluster, params, distance, shareDistance, section2D,
+        [&](const std::vector<std::size_t>& part) { return tryDisc(part, nullptr) == Verdict::Emitted; });
+      for (const auto& part : parts) {
+        tryDisc(part, &found);
+      }
+      return found;
     };
     const auto clusters = connectedParts(cracks, members[static_cast<std::size_t>(s)], distance, shareDistance);
     c.clusters = clusters.size();
     for (const auto& cluster : clusters) {
-      if (cluster.size() < static_cast<std::size_t>(params.minimumCracks)) {
+      if (cluster.size() < minimum) {
         ++c.rejectedTooSmall;
         continue;
       }
-      const PlaneFit f = fitPlane(cracks, cluster, section2D);
-      if (f.planarity >= params.minimumPlanarity) {
-        emit(cluster, f);
+      const Verdict v = tryDisc(cluster, &discs);
+      if (v == Verdict::Sparse) {
+        ++c.rejectedSparse;
         continue;
       }
-      const auto parts = splitIntoPlanes(cracks, cluster, params, distance, shareDistance, section2D);
-      if (parts.empty()) {
+      if (v == Verdict::Emitted) {
+        continue;
+      }
+      auto found = resolve(cluster);
+      if (found.empty()) {
         ++c.rejectedNonPlanar;
         continue;
       }
       ++c.splitClusters;
-      for (const auto& part : parts) {
-        emit(part, fitPlane(cracks, part, section2D));
+      for (auto& d : found) {
+        discs.push_back(std::move(d));
+      }
+    }
+    // Cracks in discs (a crack near the intersection of two discs counts once).
+    std::vector<char> bondInDisc(b.size(), 0);
+    for (const auto& d : discs) {
+      for (std::size_t k : d.bonds) {
+        if (!bondInDisc[k]) {
+          bondInDisc[k] = 1;
+          ++c.cracksInDiscs;
+        }
       }
     }
     c.discs = discs.size();

@@ -340,7 +340,7 @@ TEST(Fractures, RejectionsAreCountedAndExplained)
   net = extractFractures(m, strict);
   EXPECT_TRUE(net.discs.empty());
   EXPECT_EQ(net.report.total.rejectedTooSmall, 1u);
-  EXPECT_NE(net.report.summary().find("every cluster was rejected (1 too small, 0 non-planar)"), std::string::npos)
+  EXPECT_NE(net.report.summary().find("every cluster was rejected (1 too small, 0 non-planar, 0 sparse)"), std::string::npos)
     << net.report.summary();
   strict.minimumCracks = 10;
   strict.minimumPlanarity = 1.0; // nothing real is perfectly planar
@@ -348,6 +348,40 @@ TEST(Fractures, RejectionsAreCountedAndExplained)
   EXPECT_TRUE(net.discs.empty());
   EXPECT_EQ(net.report.total.rejectedNonPlanar, 1u) << net.report.summary();
   EXPECT_EQ(net.report.clusterDistance, 2.0 * meanParticleDiameter(m)) << "default: two mean diameters";
+}
+
+// Fill: the broken fraction of the bonds crossing the disc. A planted plane is fully
+// broken (Fill about 1); healing every other crack halves it, and Minimum Fill 0.7 then
+// rejects the disc as sparse (diffuse damage that happens to line up).
+TEST(Fractures, FillMeasuresHowBrokenTheDiscIs)
+{
+  Model m = cementedPack();
+  const std::size_t broken = breakAcross(m, boxCentre(m), normalFromDipAzimuth(50, 20), BondFailure::Tension);
+  FractureNetwork net = extractFractures(m, FractureParameters());
+  ASSERT_EQ(net.discs.size(), 1u);
+  EXPECT_GT(net.discs[0].fill, 0.9);
+  const double full = net.discs[0].fill;
+  std::size_t healed = 0;
+  for (std::size_t k = 0, seen = 0; k < m.bonds.size(); ++k) {
+    if (m.bonds.broken(k) && (seen++ % 2 == 1)) {
+      m.bonds.failure[k] = static_cast<std::uint8_t>(BondFailure::Intact);
+      ++healed;
+    }
+  }
+  FractureParameters loose;
+  loose.minimumCracks = 10;
+  net = extractFractures(m, loose);
+  ASSERT_EQ(net.discs.size(), 1u) << net.report.summary();
+  EXPECT_NEAR(net.discs[0].fill, 0.5 * full, 0.1);
+  FractureParameters strict;
+  strict.minimumFill = 0.7;
+  net = extractFractures(m, strict);
+  EXPECT_TRUE(net.discs.empty());
+  EXPECT_EQ(net.report.total.rejectedSparse, 1u) << net.report.summary();
+  EXPECT_NE(net.report.summary().find("1 rejected as sparse (Fill below 0.7)"), std::string::npos)
+    << net.report.summary();
+  std::printf("[fill] planted plane: %zu cracks, fill %.3f; every other crack healed (%zu): fill %.3f\n", broken,
+    full, healed, extractFractures(m, loose).discs[0].fill);
 }
 
 TEST(Fractures, BadParametersAreNamed)
@@ -370,6 +404,9 @@ TEST(Fractures, BadParametersAreNamed)
   p = FractureParameters();
   p.clusterDistance = -1e-3;
   EXPECT_NE(message(p).find("Cluster Distance = -0.001 m"), std::string::npos) << message(p);
+  p = FractureParameters();
+  p.minimumFill = 2.0;
+  EXPECT_NE(message(p).find("Minimum Fill = 2"), std::string::npos) << message(p);
   p = FractureParameters();
   p.discSides = 2;
   EXPECT_NE(message(p).find("Disc Sides = 2"), std::string::npos) << message(p);

@@ -38,6 +38,7 @@ struct FractureParameters {
   int minimumCracks = 10;          ///< Minimum Cracks: a cluster with fewer cracks is rejected, >= 3
   double minimumPlanarity = 0.8;   ///< Minimum Planarity: 1 - l1/l2 at least this, [0, 1]
   double clusterDistance = 0.0;    ///< Cluster Distance, m, >= 0; 0 = two mean particle diameters
+  double minimumFill = 0.0;        ///< Minimum Fill: broken fraction of the bonds crossing the disc, [0, 1]; 0 = off
   int discSides = 24;              ///< Disc Sides: vertices of each disc polygon, >= 3
 };
 
@@ -61,6 +62,7 @@ struct FractureDisc {
   double radius = 0.0;           ///< m, sqrt(Area / pi) (2D: half the trace length)
   double area = 0.0;             ///< m^2, L2 x L3 (2D: trace length x slab)
   double planarity = 0.0;        ///< 1 - l1 / l2
+  double fill = 0.0;             ///< broken fraction of the bonds crossing the disc
   std::array<double, 3> eigenvalues{ { 0, 0, 0 } }; ///< m^2, l1 <= l2 <= l3
   std::vector<std::size_t> bonds; ///< indices into Model::bonds of its cracks
   std::vector<Vec3> polygon;     ///< m, the disc (Disc Sides vertices; 2D: 4) in order
@@ -73,8 +75,9 @@ struct FractureCounts {
   std::size_t clusters = 0;          ///< spatially connected clusters
   std::size_t discs = 0;             ///< discs emitted
   std::size_t rejectedTooSmall = 0;  ///< clusters with fewer than Minimum Cracks
-  std::size_t rejectedNonPlanar = 0; ///< clusters below Minimum Planarity that did not split into planes
-  std::size_t splitClusters = 0;     ///< non-planar clusters split into planar parts (intersecting fractures)
+  std::size_t rejectedNonPlanar = 0; ///< clusters below Minimum Planarity that did not resolve into planar parts
+  std::size_t rejectedSparse = 0;    ///< planar clusters whose disc has a Fill below Minimum Fill
+  std::size_t splitClusters = 0;     ///< non-planar clusters resolved into planar parts
   std::size_t cracksInDiscs = 0;     ///< cracks that ended up in a disc
   FractureCounts& operator+=(const FractureCounts& o);
 };
@@ -85,6 +88,7 @@ struct FractureReport {
   double clusterDistance = 0.0;   ///< m, the distance used (the default resolved)
   int minimumCracks = 0;          ///< the parameters the counts refer to
   double minimumPlanarity = 0.0;
+  double minimumFill = 0.0;
   /// Several lines: per set "Tensile: N broken bonds, C clusters, D discs, ...", then a
   /// line saying why nothing was emitted when that is the case.
   std::string summary() const;
@@ -114,13 +118,17 @@ Vec3 normalFromDipAzimuth(double dipDegrees, double azimuthDegrees);
 /// their bonds share a particle and the positions lie within two largest particle
 /// diameters (so that a cluster never joins across a periodic seam).
 /// A cluster with at least Minimum Cracks cracks becomes a disc if its Planarity is at
-/// least Minimum Planarity. A non-planar cluster may be two or more intersecting
-/// fractures: planes are extracted from it one after another (the plane through three
-/// of its cracks with the most cracks within half a Cluster Distance, 256 deterministic
-/// trials, refined by a fit to those cracks); a plane is kept if it holds at least a
-/// quarter of the remaining cracks and Minimum Cracks, and its connected parts are kept
-/// when planar. The split stands only if the kept planes hold at least 75 % of the
-/// cluster's cracks; otherwise the cluster is rejected as non-planar.
+/// least Minimum Planarity and its Fill (the fraction of all bonds whose segment crosses
+/// the disc that are broken: 1 for a clean fracture, about the damage fraction for a
+/// chance alignment in diffuse damage) is at least Minimum Fill (default 0: off, since the
+/// fractures of a small failed specimen are partly broken zones with fills of 0.3-0.6).
+/// A non-planar cluster may be two or more intersecting fractures: planes are extracted
+/// from it one after another (the plane through three of its cracks with the most cracks
+/// within half the clustering distance, 256 deterministic trials, refined by a fit to
+/// those cracks); a plane is kept if it holds at least a quarter of the cluster's cracks
+/// and Minimum Cracks, and its connected parts are kept when they make discs. The split
+/// stands only if the kept planes hold at least 75 % of the cluster's cracks; otherwise
+/// the cluster is rejected as non-planar.
 FractureNetwork extractFractures(const Model& model, const FractureParameters& params);
 
 } // namespace dem
