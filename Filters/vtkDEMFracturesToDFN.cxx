@@ -57,6 +57,7 @@ vtkDEMFracturesToDFN::vtkDEMFracturesToDFN()
   : MinimumCracks(10)
   , MinimumPlanarity(0.8)
   , ClusterDistance(0.0)
+  , MinimumFill(0.0)
   , DiscSides(24)
   , NumberOfBrokenBonds(0)
   , NumberOfClusters(0)
@@ -66,6 +67,7 @@ vtkDEMFracturesToDFN::vtkDEMFracturesToDFN()
   , NumberOfInheritedDiscs(0)
   , RejectedTooSmall(0)
   , RejectedNonPlanar(0)
+  , RejectedSparse(0)
   , UsedClusterDistance(0.0)
 {
   this->SetNumberOfOutputPorts(2);
@@ -95,6 +97,7 @@ void vtkDEMFracturesToDFN::ResetCounts()
   this->NumberOfInheritedDiscs = 0;
   this->RejectedTooSmall = 0;
   this->RejectedNonPlanar = 0;
+  this->RejectedSparse = 0;
   this->UsedClusterDistance = 0.0;
 }
 
@@ -113,6 +116,7 @@ int vtkDEMFracturesToDFN::RequestData(
     params.minimumCracks = this->MinimumCracks;
     params.minimumPlanarity = this->MinimumPlanarity;
     params.clusterDistance = this->ClusterDistance;
+    params.minimumFill = this->MinimumFill;
     params.discSides = this->DiscSides;
     dem::validate(params);
     const dem::Model model = rockdem::MultiBlockToModel(input);
@@ -129,6 +133,7 @@ int vtkDEMFracturesToDFN::RequestData(
     auto normal = NewDoubleArray("Normal", 3, n);
     auto center = NewDoubleArray("Center", 3, n);
     auto planarity = NewDoubleArray("Planarity", 1, n);
+    auto fill = NewDoubleArray("Fill", 1, n);
     vtkNew<vtkIntArray> set;
     set->SetName("Set");
     set->SetNumberOfTuples(n);
@@ -153,6 +158,7 @@ int vtkDEMFracturesToDFN::RequestData(
       normal->SetTuple3(c, d.normal.x(), d.normal.y(), d.normal.z());
       center->SetTuple3(c, d.center.x(), d.center.y(), d.center.z());
       planarity->SetValue(c, d.planarity);
+      fill->SetValue(c, d.fill);
       set->SetValue(c, static_cast<int>(d.set));
       setName->SetValue(c, dem::fractureSetName(d.set));
       cracks->SetValue(c, static_cast<vtkIdType>(d.crackCount()));
@@ -161,7 +167,7 @@ int vtkDEMFracturesToDFN::RequestData(
     discs->SetPolys(polys);
     vtkCellData* cd = discs->GetCellData();
     for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ dip, azimuth, set, setName, radius, area,
-           normal, center, cracks, planarity })
+           normal, center, cracks, planarity, fill })
     {
       cd->AddArray(a);
     }
@@ -190,6 +196,7 @@ int vtkDEMFracturesToDFN::RequestData(
     table->AddColumn(setName);
     table->AddColumn(cracks);
     column("Planarity", planarity, 0);
+    column("Fill", fill, 0);
 
     const dem::FractureReport& r = net.report;
     this->NumberOfBrokenBonds = static_cast<vtkIdType>(r.total.brokenBonds);
@@ -200,6 +207,7 @@ int vtkDEMFracturesToDFN::RequestData(
     this->NumberOfInheritedDiscs = static_cast<vtkIdType>(r.sets[2].discs);
     this->RejectedTooSmall = static_cast<vtkIdType>(r.total.rejectedTooSmall);
     this->RejectedNonPlanar = static_cast<vtkIdType>(r.total.rejectedNonPlanar);
+    this->RejectedSparse = static_cast<vtkIdType>(r.total.rejectedSparse);
     this->UsedClusterDistance = r.clusterDistance;
     this->LastMessageText = r.summary();
     vtkOutputWindowDisplayText(("DEM Fractures To DFN: " + this->LastMessageText + "\n").c_str());
@@ -209,7 +217,8 @@ int vtkDEMFracturesToDFN::RequestData(
                       << (r.total.brokenBonds == 0 ? "the model has no broken bonds."
                                                    : "every cluster of broken bonds was rejected (" +
                             std::to_string(r.total.rejectedTooSmall) + " too small, " +
-                            std::to_string(r.total.rejectedNonPlanar) + " non-planar)."));
+                            std::to_string(r.total.rejectedNonPlanar) + " non-planar, " +
+                            std::to_string(r.total.rejectedSparse) + " sparse)."));
     }
   }
   catch (const std::exception& e)
@@ -232,6 +241,7 @@ void vtkDEMFracturesToDFN::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumCracks: " << this->MinimumCracks << "\n";
   os << indent << "MinimumPlanarity: " << this->MinimumPlanarity << "\n";
   os << indent << "ClusterDistance: " << this->ClusterDistance << " m\n";
+  os << indent << "MinimumFill: " << this->MinimumFill << "\n";
   os << indent << "DiscSides: " << this->DiscSides << "\n";
   os << indent << "BrokenBonds: " << this->NumberOfBrokenBonds << "\n";
   os << indent << "Clusters: " << this->NumberOfClusters << "\n";
@@ -239,6 +249,7 @@ void vtkDEMFracturesToDFN::PrintSelf(ostream& os, vtkIndent indent)
      << ", shear " << this->NumberOfShearDiscs << ", inherited " << this->NumberOfInheritedDiscs << ")\n";
   os << indent << "RejectedTooSmall: " << this->RejectedTooSmall << "\n";
   os << indent << "RejectedNonPlanar: " << this->RejectedNonPlanar << "\n";
+  os << indent << "RejectedSparse: " << this->RejectedSparse << "\n";
   os << indent << "UsedClusterDistance: " << this->UsedClusterDistance << " m\n";
   os << indent << "LastMessage: " << this->LastMessageText << "\n";
 }

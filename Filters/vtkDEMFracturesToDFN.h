@@ -13,9 +13,10 @@
  * for, so the discs shown match the model shown as the animation plays (the upstream
  * time steps pass through). Output port 0: vtkPolyData, one polygon per disc,
  * with cell arrays Dip, Azimuth (degrees), Set (0 tensile, 1 shear, 2 inherited), SetName,
- * Radius (m), Area (m^2), Normal (3), Center (m, 3), CrackCount, Planarity. Output port 1:
- * vtkTable, one row per disc: CenterX/Y/Z (m), NormalX/Y/Z, Dip, Azimuth (degrees),
- * Radius (m), Area (m^2), Set, SetName, CrackCount, Planarity (CSV through Save Data).
+ * Radius (m), Area (m^2), Normal (3), Center (m, 3), CrackCount, Planarity, Fill. Output
+ * port 1: vtkTable, one row per disc: CenterX/Y/Z (m), NormalX/Y/Z, Dip, Azimuth
+ * (degrees), Radius (m), Area (m^2), Set, SetName, CrackCount, Planarity, Fill (CSV
+ * through Save Data).
  *
  * What happened (broken bonds, clusters, discs per set, clusters rejected as too small
  * and as non-planar, and why nothing was emitted) goes to the Output Messages and to the
@@ -58,6 +59,13 @@ public:
   ///@}
 
   ///@{
+  /// A disc whose Fill (the fraction of the bonds crossing it that are broken,
+  /// dimensionless) is below this is rejected as sparse, [0, 1]; 0 = no such test.
+  vtkSetMacro(MinimumFill, double);
+  vtkGetMacro(MinimumFill, double);
+  ///@}
+
+  ///@{
   /// Vertices of each disc polygon (>= 3).
   vtkSetMacro(DiscSides, int);
   vtkGetMacro(DiscSides, int);
@@ -73,6 +81,7 @@ public:
   vtkGetMacro(NumberOfInheritedDiscs, vtkIdType); ///< Inherited Discs
   vtkGetMacro(RejectedTooSmall, vtkIdType);     ///< clusters with fewer than Minimum Cracks
   vtkGetMacro(RejectedNonPlanar, vtkIdType);    ///< clusters below Minimum Planarity
+  vtkGetMacro(RejectedSparse, vtkIdType);       ///< planar clusters below Minimum Fill
   vtkGetMacro(UsedClusterDistance, double);     ///< m, the Cluster Distance used
   const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
@@ -88,6 +97,7 @@ protected:
   int MinimumCracks;
   double MinimumPlanarity;
   double ClusterDistance;
+  double MinimumFill;
   int DiscSides;
 
   // Read-only values are results, not parameters: setting them must not call Modified().
@@ -99,6 +109,7 @@ protected:
   vtkIdType NumberOfInheritedDiscs;
   vtkIdType RejectedTooSmall;
   vtkIdType RejectedNonPlanar;
+  vtkIdType RejectedSparse;
   double UsedClusterDistance;
   std::string LastMessageText;
 

@@ -115,14 +115,15 @@ TEST(FracturesToDFN, DiscsSummaryTableAndCounts)
   EXPECT_EQ(dfn->GetNumberOfTensileDiscs(), 1);
   EXPECT_EQ(dfn->GetNumberOfShearDiscs(), 1);
   EXPECT_EQ(dfn->GetNumberOfInheritedDiscs(), 0);
-  EXPECT_EQ(dfn->GetRejectedTooSmall() + dfn->GetRejectedNonPlanar(), 0);
+  EXPECT_EQ(dfn->GetRejectedTooSmall() + dfn->GetRejectedNonPlanar() + dfn->GetRejectedSparse(), 0);
   EXPECT_NEAR(dfn->GetUsedClusterDistance(), 2.0 * dem::meanParticleDiameter(m), 1e-15);
   const std::string message = dfn->GetLastMessage();
   EXPECT_NE(message.find("Tensile set: " + std::to_string(tensile) + " broken bonds"), std::string::npos) << message;
   EXPECT_NE(message.find("Shear set: " + std::to_string(shear) + " broken bonds"), std::string::npos) << message;
 
   vtkCellData* cd = discs->GetCellData();
-  for (const char* name : { "Dip", "Azimuth", "Set", "Radius", "Area", "Normal", "Center", "CrackCount", "Planarity" })
+  for (const char* name :
+    { "Dip", "Azimuth", "Set", "Radius", "Area", "Normal", "Center", "CrackCount", "Planarity", "Fill" })
   {
     ASSERT_NE(cd->GetArray(name), nullptr) << name;
     EXPECT_EQ(cd->GetArray(name)->GetNumberOfTuples(), 2) << name;
@@ -140,6 +141,7 @@ TEST(FracturesToDFN, DiscsSummaryTableAndCounts)
   EXPECT_NEAR(cd->GetArray("Azimuth")->GetTuple1(1), 300.0, 3.0);
   EXPECT_EQ(cd->GetArray("CrackCount")->GetTuple1(0), static_cast<double>(tensile));
   EXPECT_EQ(cd->GetArray("CrackCount")->GetTuple1(1), static_cast<double>(shear));
+  EXPECT_GT(cd->GetArray("Fill")->GetRange(0)[0], 0.9) << "planted planes are fully broken";
   for (vtkIdType c = 0; c < 2; ++c)
   {
     const double r = cd->GetArray("Radius")->GetTuple1(c);
@@ -172,9 +174,9 @@ TEST(FracturesToDFN, DiscsSummaryTableAndCounts)
   // The summary table: one row per disc, the columns the CSV needs, the same values.
   ASSERT_EQ(table->GetNumberOfRows(), 2);
   const char* columns[] = { "CenterX", "CenterY", "CenterZ", "NormalX", "NormalY", "NormalZ", "Dip", "Azimuth",
-    "Radius", "Area", "Set", "SetName", "CrackCount", "Planarity" };
-  ASSERT_EQ(table->GetNumberOfColumns(), 14);
-  for (int k = 0; k < 14; ++k)
+    "Radius", "Area", "Set", "SetName", "CrackCount", "Planarity", "Fill" };
+  ASSERT_EQ(table->GetNumberOfColumns(), 15);
+  for (int k = 0; k < 15; ++k)
   {
     EXPECT_EQ(std::string(table->GetColumnName(k)), columns[k]);
   }
@@ -240,6 +242,7 @@ TEST(FracturesToDFN, BadParameterIsNamedAndGivesNoOutput)
     else if (bad == 1)
     {
       f->SetMinimumPlanarity(-0.1);
+      f->SetMinimumFill(0.5); // valid: the error names the bad one
     }
     else
     {
