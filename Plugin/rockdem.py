@@ -373,3 +373,34 @@ def triaxial_series(cemented_source, confining_stresses, delete=True, progress=N
     except ValueError:
         envelope = (float("nan"), float("nan"))
     return results, envelope
+
+
+# ---------------------------------------------------------------------------------------
+# Fractures (DEM Fractures To DFN; Documentation/Fractures.md).
+# ---------------------------------------------------------------------------------------
+
+#: Colours of the fracture sets (Set 0 tensile, 1 shear, 2 inherited), RGB 0-1.
+FRACTURE_SET_COLORS = ((0.85, 0.15, 0.15), (0.15, 0.35, 0.85), (0.2, 0.7, 0.2))
+
+
+def show_fractures(dfn, view=None, model=None, opacity=0.85):
+    """Show the discs of a DEM Fractures To DFN (output port 0) coloured by Set.
+
+    Tensile red, shear blue, inherited green (FRACTURE_SET_COLORS). With ``model``
+    (a RockDEM model source), its particles are shown too, as spheres (show_particles),
+    so the discs appear inside the specimen they came from. Returns the discs'
+    representation.
+    """
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    if model is not None:
+        particles = show_particles(model, view, color_by=None)
+        particles.Opacity = 0.25
+    display = _simple.Show(_simple.OutputPort(dfn, 0), view)
+    display.SetRepresentationType("Surface")
+    display.Opacity = opacity
+    _simple.ColorBy(display, ("CELLS", "Set"))
+    lut = _simple.GetColorTransferFunction("Set")
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = ["0", "Tensile", "1", "Shear", "2", "Inherited"]
+    lut.IndexedColors = [c for rgb in FRACTURE_SET_COLORS for c in rgb]
+    return display
