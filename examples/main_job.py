@@ -4,15 +4,17 @@
 
 pack (Add/Grow) -> settle under gravity (Mode Off) -> isotropic consolidation (densify)
 -> cement (DEM Cement) -> relax (Mode Off, no gravity) -> unconfined compression (Mode
-Compression, Axis Z). Prints the porosity, UCS (Peak Stress), Young's modulus, Poisson's
+Compression, Axis Z) -> fracture discs (DEM Fractures To DFN). Prints the porosity, UCS (Peak Stress), Young's modulus, Poisson's
 ratio, broken bonds and the timing of each stage. See Documentation/Workflow.md.
 
 The plugin is taken from $ROCKDEM_PLUGIN, or from the default build tree. Writes, in DIR:
 pack.png (the pack as spheres coloured by radius, with the domain box), pack_summary.csv
 (one row per pack stage: elements, porosity), history.csv (the compression test's
 History table), stress_strain.png (the DEM Test chart), broken.png (the specimen after the
-test, spheres coloured by displacement, broken bonds in red), results.csv (one row: the
-measured values and timings).
+test, spheres coloured by displacement, broken bonds in red), dfn.csv and dfn.png (the
+fracture discs exported by DEM Fractures To DFN just past the peak, one row per disc, and
+a picture of them inside the grains), results.csv (one row: the measured values and
+timings).
 """
 import argparse
 import os
@@ -220,12 +222,44 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     print("broken specimen picture: %s" % broken_png)
     lap("pictures")
 
+    # 6. The fracture network (DEM Fractures To DFN, Documentation/Fractures.md), taken at
+    # the first frame past the peak: by the end of the test the specimen is crushed into
+    # one connected damage zone. History times are model time; frames count from the
+    # test's start.
+    h = result["history"]
+    stress, times = h["Axial Stress (Pa)"], h["Time (s)"]
+    ipeak = int(stress.argmax())
+    after = [i for i in range(ipeak, len(stress)) if stress[i] < 0.95 * stress[ipeak]]
+    frame_times = list(press.TimestepValues)
+    t_dfn = frame_times[0] + (times[after[0]] if after else times[-1]) - times[0]
+    t_dfn = min([t for t in frame_times if t >= t_dfn - 1e-12] or [frame_times[-1]])
+    dfn = DEMFracturesToDFN(Input=press)
+    dfn.UpdatePipeline(t_dfn)
+    print("DFN at t = %.4g s: %s" % (t_dfn, rockdem.read_only(dfn, "LastMessage")), flush=True)
+    dfn_csv = os.path.join(args.output, "dfn.csv")
+    SaveData(dfn_csv, proxy=OutputPort(dfn, 1))
+    for proxy in list(GetSources().values()):
+        try:
+            Hide(proxy, view)
+        except Exception:
+            pass
+    view.ViewTime = t_dfn
+    rockdem.show_fractures(dfn, view, model=press)
+    Render(view)
+    dfn_png = os.path.join(args.output, "dfn.png")
+    SaveScreenshot(dfn_png, view, ImageResolution=[1000, 1200])
+    discs = rockdem.read_only(dfn, "DiscsEmitted")
+    print("DFN: %d discs (%d tensile, %d shear); picture: %s; table: %s" % (
+        discs, rockdem.read_only(dfn, "TensileDiscs"),
+        rockdem.read_only(dfn, "ShearDiscs"), dfn_png, dfn_csv), flush=True)
+    lap("DFN")
+
     results = os.path.join(args.output, "results.csv")
     with open(results, "w") as f:
-        f.write("elements,bonds,ucs_Pa,youngs_modulus_Pa,poissons_ratio,broken_bonds,strain_rate_per_s,"
+        f.write("elements,bonds,ucs_Pa,youngs_modulus_Pa,poissons_ratio,broken_bonds,strain_rate_per_s,dfn_discs,"
                 + ",".join("time_%s_s" % n.replace(" ", "_").replace("+", "and") for n, _ in timings) + "\n")
-        f.write("%d,%d,%.6g,%.6g,%.4f,%d,%.4g," % (pack.GetDataInformation().GetNumberOfPoints(),
-                                                   bonds, ucs, e_mod, nu, broken, rate)
+        f.write("%d,%d,%.6g,%.6g,%.4f,%d,%.4g,%d," % (pack.GetDataInformation().GetNumberOfPoints(),
+                                                      bonds, ucs, e_mod, nu, broken, rate, discs)
                 + ",".join("%.1f" % t for _, t in timings) + "\n")
     print("total %.1f s; results: %s" % (sum(t for _, t in timings), results))
 
