@@ -528,3 +528,14 @@ TEST(StateFile, HistoryGoesBesideAsCSV)
   EXPECT_EQ(rows, m.test.history.size());
   EXPECT_EQ(lastTime, m.test.history.back()[0]) << "full precision";
 }
+
+// Files that crash HDF5 1.10's own parser (found by fuzzing with the checksum check off,
+// Testing/Fuzz/hdf5_crashers): with the check on they are rejected before HDF5 sees them.
+TEST(StateFile, FilesThatCrashHDF5AreStoppedByTheChecksum)
+{
+  for (const char* name : { "alloc_too_big_H5C_protect.rdem", "segv_H5D__chunk_set_sizes.rdem" }) {
+    const std::string path = std::string(ROCKDEM_SOURCE_DIR) + "/Testing/Fuzz/hdf5_crashers/" + name;
+    const std::string error = readError(path);
+    EXPECT_NE(error.find("is corrupt"), std::string::npos) << name << ": " << error;
+  }
+}
