@@ -1,6 +1,6 @@
 """Saving and reopening a RockDEM pipeline (Documentation/StateFile.md).
 
-Parent process: a triaxial test (DEM Pack Source -> DEM Load Test) runs N frames with a
+Parent process: a triaxial test (checkpointed mid-shear) (DEM Pack Source -> DEM Load Test) runs N frames with a
 Checkpoint File; the pipeline is saved as a ParaView state (.pvsm); an uninterrupted run of
 2N frames is the reference. Then, in NEW pvpython processes:
   1. LoadState(recipe.pvsm) rebuilds the pipeline; recomputed to frame N it is bitwise the
@@ -25,8 +25,8 @@ from paraview.simple import Delete, FindSource, LoadState, SaveData, SaveState
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rockdem_test_support import Checks, load_rockdem  # noqa: E402
 
-N = 5
-DT = 0.0005  # s, Frame Interval
+N = 8
+DT = 0.001  # s, Frame Interval: frame N is in the shearing stage, past consolidation
 TRIAXIAL = dict(Mode='Triaxial', ConfiningStress=1.0e5, StrainRate=0.5, SampleInterval=100,
                 Gravity=[0.0, 0.0, 0.0], FrameInterval=DT)
 
@@ -97,8 +97,8 @@ def child_one(work):
     checks.check(diff == '', 'the rebuilt pipeline recomputes frame N bitwise (%s)' % (diff or 'identical'))
     r, lt = continue_from(os.path.join(work, 'checkpoint.rdem'))
     r.UpdatePropertyInformation()
-    checks.check(r.GetPropertyValue('Stage') in ('consolidate', 'shear'),
-                 'the checkpoint holds a test in progress (stage %s)' % r.GetPropertyValue('Stage'))
+    checks.check(r.GetPropertyValue('Stage') == 'shear',
+                 'the checkpoint holds a triaxial test mid-shear (stage %s)' % r.GetPropertyValue('Stage'))
     save_arrays(os.path.join(work, 'continued_1.npz'), arrays_of(lt))
     SaveState(os.path.join(work, 'continue.pvsm'))
     checks.finish()
