@@ -15,6 +15,8 @@
 #include <fstream>
 #include <unordered_set>
 
+#include <sys/stat.h>
+
 namespace dem {
 namespace state {
 namespace {
@@ -387,18 +389,21 @@ Model readStateFromMemory(const void* data, std::size_t size, const StateReadOpt
 
 Model readState(const std::string& path, const StateReadOptions& options)
 {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) {
+    throw FileError("State file '" + path + "' cannot be opened: " + std::strerror(errno) + ".");
+  }
+  if (!S_ISREG(info.st_mode)) {
+    throw FileError("State file '" + path + "' is not a regular file" +
+                    (S_ISDIR(info.st_mode) ? std::string(" (it is a directory).") : std::string(".")));
+  }
+  std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw FileError("State file '" + path + "' cannot be opened: " + std::strerror(errno) + ".");
   }
-  const std::streamoff end = in.tellg();
-  if (end < 0) {
-    throw FileError("State file '" + path + "' cannot be read (is it a directory?).");
-  }
-  std::vector<unsigned char> image(static_cast<std::size_t>(end));
-  in.seekg(0);
-  if (!image.empty() && !in.read(reinterpret_cast<char*>(image.data()), end)) {
-    throw FileError("State file '" + path + "' cannot be read: reading " + std::to_string(end) +
+  std::vector<unsigned char> image(static_cast<std::size_t>(info.st_size));
+  if (!image.empty() && !in.read(reinterpret_cast<char*>(image.data()), static_cast<std::streamsize>(image.size()))) {
+    throw FileError("State file '" + path + "' cannot be read: reading " + std::to_string(image.size()) +
                     " bytes failed.");
   }
   return state::readImage(image.data(), image.size(), options, path);

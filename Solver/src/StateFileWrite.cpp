@@ -41,9 +41,12 @@ class Writer {
 public:
   static constexpr bool Reading = false;
 
-  explicit Writer(hid_t file) : file_(file), lcpl_(H5Pcreate(H5P_LINK_CREATE), H5Pclose)
+  explicit Writer(hid_t file)
+    : file_(file), dcpl_(H5Pcreate(H5P_DATASET_CREATE), H5Pclose), gcpl_(H5Pcreate(H5P_GROUP_CREATE), H5Pclose)
   {
-    H5Pset_create_intermediate_group(lcpl_.get(), 1);
+    // No modification times in the object headers: the same model gives the same bytes.
+    H5Pset_obj_track_times(dcpl_.get(), 0);
+    H5Pset_obj_track_times(gcpl_.get(), 0);
   }
 
   void f64(const char* path, double& v, const char* unit) { write(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 0, 0, 0, &v, unit); }
@@ -130,7 +133,8 @@ private:
   {
     const hsize_t dims[2] = { d0, d1 };
     Handle space(rank == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(rank, dims, nullptr), H5Sclose);
-    Handle dset(H5Dcreate2(file_, path, fileType, space.get(), lcpl_.get(), H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+    makeParents(path);
+    Handle dset(H5Dcreate2(file_, path, fileType, space.get(), H5P_DEFAULT, dcpl_.get(), H5P_DEFAULT), H5Dclose);
     if (!dset.valid()) {
       hdf5Failure(std::string("creating '/") + path + "'");
     }
@@ -141,8 +145,23 @@ private:
     stringAttribute(dset.get(), "units", unit);
   }
 
+  void makeParents(const std::string& path)
+  {
+    for (std::size_t slash = path.find('/'); slash != std::string::npos; slash = path.find('/', slash + 1)) {
+      const std::string group = path.substr(0, slash);
+      if (H5Lexists(file_, group.c_str(), H5P_DEFAULT) > 0) {
+        continue;
+      }
+      Handle g(H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, gcpl_.get(), H5P_DEFAULT), H5Gclose);
+      if (!g.valid()) {
+        hdf5Failure("creating the group '/" + group + "'");
+      }
+    }
+  }
+
   hid_t file_;
-  Handle lcpl_;
+  Handle dcpl_;
+  Handle gcpl_;
 };
 
 } // namespace
