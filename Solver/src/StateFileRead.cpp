@@ -85,6 +85,20 @@ public:
   }
   void u64x4(const char* path, std::array<std::uint64_t, 4>& v) { fixed(path, Kind::Unsigned, 8, H5T_NATIVE_UINT64, 4, v.data()); }
 
+  /// Whether the file has the dataset (for fields added after version 1: see StateSchema.h).
+  bool has(const char* path) const
+  {
+    const std::string full(path);
+    for (std::size_t slash = full.find('/');; slash = full.find('/', slash + 1)) {
+      if (H5Lexists(file_, full.substr(0, slash).c_str(), H5P_DEFAULT) <= 0) {
+        return false;
+      }
+      if (slash == std::string::npos) {
+        return true;
+      }
+    }
+  }
+
   std::size_t length(const char* path, std::size_t)
   {
     Handle d = open(path);

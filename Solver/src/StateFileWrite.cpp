@@ -77,6 +77,7 @@ public:
   void u64x4(const char* path, std::array<std::uint64_t, 4>& v) { write(path, H5T_STD_U64LE, H5T_NATIVE_UINT64, 1, 4, 0, v.data(), "1"); }
 
   std::size_t length(const char*, std::size_t n) { return n; }
+  bool has(const char*) const { return true; }
 
   void column(const char* path, std::vector<double>& v, std::size_t n, const char* unit, const char* per) { check(path, v.size(), n, per); write(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, v.data(), unit); }
   void column(const char* path, std::vector<Vec3>& v, std::size_t n, const char* unit, const char* per)

@@ -5,8 +5,11 @@
 // so they cannot disagree. ADDING A FIELD TO THE MODEL IS ONE LINE HERE (and a row in
 // Documentation/StateFile.md; update the recorded struct sizes in
 // Testing/Solver/TestStateFile.cpp, which fail on purpose until you do). A reader of
-// format version 1 requires every dataset listed here; a field added later must either
-// bump StateFormatVersion or be read with io.optional... (see the version policy).
+// format version 1 requires every dataset listed here. A field added later is either
+// required (bump StateFormatVersion) or optional, so that older files still read:
+//   if (io.has("bonds/new_field")) io.column("bonds/new_field", b.newField, nb, "Pa", perBond);
+//   else b.newField.assign(nb, 0.0);   // the documented default for older files
+// (the writer's has() is always true, so it is always written).
 //
 // The IO interface (both directions):
 //   f64/i64/i32/u8flag(path, value, unit)      scalar datasets
@@ -15,7 +18,8 @@
 //   length(path, n)                            writer: n; reader: the length of the dataset
 //   column(path, vector, n, unit, per)         one value (or Vec3 row) per element
 //   columnZeroOr(path, vector, n, unit, per)   as column, but may also be empty
-//   table(path, rows, unit)                    the test history, rows x HistoryColumnCount
+//   table(path, rows)                          the test history, rows x HistoryColumnCount
+//   has(path)                                  writer: true; reader: the dataset exists
 //   IO::Reading                                true in the reader
 #pragma once
 
