@@ -157,7 +157,8 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
     s.settleTolerance });
   AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
     t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
-    static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample) });
+    static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample), t.initialSpread[0],
+    t.initialSpread[1], t.initialSpread[2] });
   vtkNew<vtkDoubleArray> history;
   history->SetName("TestHistory");
   history->SetNumberOfComponents(static_cast<int>(dem::HistoryColumnCount));
@@ -187,7 +188,7 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
   s.servoAlpha = value("TestSettings", 5, 8);
   s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 8));
   s.settleTolerance = value("TestSettings", 7, 8);
-  const double stage = value("TestState", 0, 9);
+  const double stage = value("TestState", 0, 12);
   if (!(stage >= 0 && stage <= 3))
   {
     throw dem::InputError("RockDEM model array 'TestState' has an unknown stage " +
@@ -196,13 +197,17 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
   t.stage = static_cast<dem::TestStage>(static_cast<int>(stage));
   for (int k = 0; k < 3; ++k)
   {
-    t.initialLength[k] = value("TestState", 1 + k, 9);
+    t.initialLength[k] = value("TestState", 1 + k, 12);
   }
-  t.initialVolume = value("TestState", 4, 9);
-  t.peakStress = value("TestState", 5, 9);
-  t.peakDeviator = value("TestState", 6, 9);
-  t.settledChecks = static_cast<std::int64_t>(value("TestState", 7, 9));
-  t.stepsSinceSample = static_cast<std::int64_t>(value("TestState", 8, 9));
+  t.initialVolume = value("TestState", 4, 12);
+  t.peakStress = value("TestState", 5, 12);
+  t.peakDeviator = value("TestState", 6, 12);
+  t.settledChecks = static_cast<std::int64_t>(value("TestState", 7, 12));
+  t.stepsSinceSample = static_cast<std::int64_t>(value("TestState", 8, 12));
+  for (int k = 0; k < 3; ++k)
+  {
+    t.initialSpread[k] = value("TestState", 9 + k, 12);
+  }
   auto* history = vtkDoubleArray::SafeDownCast(fd->GetArray("TestHistory"));
   if (!history || history->GetNumberOfComponents() != static_cast<int>(dem::HistoryColumnCount))
   {

@@ -40,6 +40,22 @@ def show_domain_box(source, view=None, port=1):
     return display
 
 
+def show_broken_bonds(source, view=None, color=(0.9, 0.0, 0.0), line_width=3.0):
+    """Show a RockDEM model's broken bonds (the Bonds block's cells with Broken = 1) as
+    lines of the given colour between the two particle centres. Returns the representation
+    of the Threshold that selects them."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    broken = _simple.Threshold(Input=source, Scalars=["CELLS", "Broken"], LowerThreshold=1,
+                               UpperThreshold=1, ThresholdMethod="Between")
+    display = _simple.Show(broken, view)
+    display.SetRepresentationType("Wireframe")
+    display.ColorArrayName = ["CELLS", ""]
+    display.AmbientColor = list(color)
+    display.DiffuseColor = list(color)
+    display.LineWidth = line_width
+    return display
+
+
 def read_only(proxy, name):
     """Current value of a read-only (information) property, refreshed from the server."""
     proxy.UpdatePropertyInformation()
@@ -187,8 +203,8 @@ def elastic_constants(history, axis="Z", lower=0.10, upper=0.50):
     - the lateral strain is the mean of the two other axes' strains; strains in the
       table are shortening positive, so a bulging specimen has negative lateral strain,
       and nu = - d(lateral strain) / d(axial strain), again a least-squares slope. In
-      unconfined compression there are no side walls: the lateral strains come from
-      the particles' extent, so nu from a small specimen is coarse.
+      unconfined compression there are no side walls: the lateral strains follow the
+      spread of the particle centres (Documentation/Press.md, Measurements).
 
     Returns (youngs_modulus_Pa, poissons_ratio). Raises ValueError with fewer than two
     rows in the window.

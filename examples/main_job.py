@@ -211,14 +211,7 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     view.ViewTime = list(press.TimestepValues)[-1]
     particles = rockdem.show_particles(press, view, color_by="Radius")
     particles.Opacity = 0.25  # see the broken bonds inside the specimen
-    broken_bonds = Threshold(Input=press, Scalars=["CELLS", "Broken"], LowerThreshold=1, UpperThreshold=1,
-                             ThresholdMethod="Between")
-    shown = Show(broken_bonds, view)
-    shown.SetRepresentationType("Wireframe")
-    shown.ColorArrayName = ["CELLS", ""]
-    shown.AmbientColor = [0.9, 0.0, 0.0]
-    shown.DiffuseColor = [0.9, 0.0, 0.0]
-    shown.LineWidth = 3.0
+    rockdem.show_broken_bonds(press, view)
     view.ResetCamera()
     Render(view)
     broken_png = os.path.join(args.output, "broken.png")

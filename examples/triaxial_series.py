@@ -3,10 +3,14 @@ Mohr-Coulomb failure envelope, and UCS, Young's modulus, Poisson's ratio and the
 of compressive to tensile strength.
 
     pvpython examples/triaxial_series.py [--elements N] [--confining 2e4,5e4,1e5,2e5] [--output DIR]
+    xvfb-run -a pvbatch examples/triaxial_series.py --pictures     # also the pictures below
 
 Writes DIR/envelope.csv (one row per test, then the fitted cohesion and friction angle),
 DIR/envelope.png (peak sigma1 against sigma3 with the fitted line; needs matplotlib, else
-skipped with a message) and prints the figures. The plugin comes from $ROCKDEM_PLUGIN or
+skipped with a message) and prints the figures. With --pictures (needs a display: run it
+under xvfb-run) it also writes DIR/specimen.png (the cemented specimen), DIR/triaxial_chart.png
+(the DEM Test chart of the test at the highest confining stress) and DIR/triaxial_broken.png
+(that specimen after the test, broken bonds in red); Documentation/Triaxial-HowTo.md shows them. The plugin comes from $ROCKDEM_PLUGIN or
 the default build tree.
 """
 import argparse
@@ -25,6 +29,8 @@ def main():
     parser.add_argument("--elements", type=int, default=600, help="Initial Elements of the specimen")
     parser.add_argument("--confining", default="2e4,5e4,1e5,2e5", help="confining stresses, Pa")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results", "triaxial"))
+    parser.add_argument("--pictures", action="store_true",
+                        help="also write specimen.png, triaxial_chart.png and triaxial_broken.png")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
     plugin = os.environ.get("ROCKDEM_PLUGIN") or os.path.join(
@@ -48,6 +54,25 @@ def main():
     print("specimen: %d particles, %d bonds (%.0f s)" % (
         rockdem.read_only(pack, "NumberOfElements"), rockdem.read_only(cement, "Bonds"), time.time() - start))
 
+    view = None
+    if args.pictures:
+        view = CreateView("RenderView")
+        view.ViewSize = [800, 1000]
+        view.Background = [1.0, 1.0, 1.0]
+        try:
+            view.UseColorPaletteForBackground = 0
+        except AttributeError:
+            pass
+        view.ViewTime = list(relax.TimestepValues)[-1]
+        rockdem.show_particles(relax, view)
+        view.CameraPosition = [0.09, -0.07, 0.06]
+        view.CameraFocalPoint = [0.01, 0.01, 0.015]
+        view.CameraViewUp = [0, 0, 1]
+        view.ResetCamera()
+        Render(view)
+        SaveScreenshot(os.path.join(args.output, "specimen.png"), view, ImageResolution=[800, 1000])
+        Hide(relax, view)
+
     test = dict(StrainRate=2.0, MaxStrain=0.02, SampleInterval=20, TimestepSafety=0.3)
     ucs = rockdem.ucs_test(relax, **test)
     print("UCS %.4g Pa, Young's modulus %.4g Pa, Poisson's ratio %.3f" % (ucs["ucs"], ucs["E"], ucs["nu"]))
@@ -57,7 +82,22 @@ def main():
 
     confining = [float(v) for v in args.confining.split(",")]
     results, (cohesion, friction) = rockdem.triaxial_series(
-        relax, confining, FrameInterval=0.002, NumberOfFrames=40, **test)
+        relax, confining, delete=not args.pictures, FrameInterval=0.002, NumberOfFrames=40, **test)
+    if args.pictures:
+        last = results[-1]["proxy"]  # the test at the highest confining stress
+        chart = rockdem.show_test_chart(last)
+        chart.ViewSize = [900, 600]
+        SaveScreenshot(os.path.join(args.output, "triaxial_chart.png"), chart, ImageResolution=[900, 600])
+        # The frame at which the test stopped (the series stops each test once it is done).
+        ended = float(results[-1]["history"]["Time (s)"][-1])
+        view.ViewTime = min([t for t in last.TimestepValues if t >= ended - 1e-12] or [last.TimestepValues[-1]])
+        particles = rockdem.show_particles(last, view, color_by="Radius")
+        particles.Opacity = 0.25
+        rockdem.show_broken_bonds(last, view)
+        view.ResetCamera()
+        Render(view)
+        SaveScreenshot(os.path.join(args.output, "triaxial_broken.png"), view, ImageResolution=[800, 1000])
+        print("pictures: specimen.png, triaxial_chart.png, triaxial_broken.png in %s" % args.output)
     for r in results:
         print("sigma3 %.3g Pa: peak sigma1 %.4g Pa, peak deviator %.4g Pa, stage %s, %d bonds broken" % (
             r["confining"], r["peak_axial"], r["peak_deviator"], r["stage"], r["broken_bonds"]))

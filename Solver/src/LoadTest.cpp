@@ -5,6 +5,7 @@
 #include "dem/Simulation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace dem {
@@ -64,6 +65,24 @@ void validate(const LoadTestSettings& s)
     throw InputError("Sample Interval = " + std::to_string(s.sampleInterval) +
                      " is out of range: it must be 1 or more steps.");
   }
+}
+
+double centreSpread(const Particles& particles, int axis)
+{
+  const std::size_t n = particles.size();
+  if (n == 0) {
+    return 0.0;
+  }
+  double mean = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    mean += particles.position[i][axis];
+  }
+  mean /= static_cast<double>(n);
+  double deviation = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    deviation += std::abs(particles.position[i][axis] - mean);
+  }
+  return deviation / static_cast<double>(n);
 }
 
 void startLoadTest(Model& model, const LoadTestSettings& settings)
@@ -135,9 +154,10 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
     t.initialLength[k] = high.position - low.position;
     const bool unwalledSide = (settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) &&
       k != a && !(d.section2D && k == 2) && !p.empty();
+    t.initialSpread[k] = 0.0;
     if (unwalledSide) {
-      // Without side walls the lateral size is measured from the particles' extent
-      // (Simulation::specimenLengths): start from the same measure.
+      // Without side walls the specimen's lateral size starts as the particles' extent;
+      // it then follows the spread of the centres (Simulation::specimenLengths).
       double lo = std::numeric_limits<double>::max();
       double hi = -lo;
       for (std::size_t i = 0; i < p.size(); ++i) {
@@ -145,6 +165,7 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
         hi = std::max(hi, p.position[i][k] + p.radius[i]);
       }
       t.initialLength[k] = hi - lo;
+      t.initialSpread[k] = centreSpread(p, k);
     }
   }
   t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];

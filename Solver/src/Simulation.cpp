@@ -809,8 +809,9 @@ void Simulation::computeBondForces(bool incrementState)
 
 std::array<double, 3> Simulation::specimenLengths() const
 {
-  // Between the walls where they are active (or driven, as the tension platen), else the
-  // extent of the particles.
+  // Between the walls where they are active (or driven, as the tension platen); on the
+  // unwalled sides of an unconfined test, the starting extent scaled by the spread of the
+  // particle centres (centreSpread: robust to grains that fly off); else the extent.
   const Particles& p = model_.particles;
   const LoadTestState& t = model_.test;
   std::array<double, 3> length{ { 0.0, 0.0, 0.0 } };
@@ -822,6 +823,9 @@ std::array<double, 3> Simulation::specimenLengths() const
       length[k] = high.position - low.position;
     } else if (model_.domain.section2D && k == 2) {
       length[k] = model_.domain.slabThickness();
+    } else if (t.initialSpread[k] > 0.0) {
+      // An unconfined side: the starting extent scaled as the spread of the centres.
+      length[k] = t.initialLength[k] * centreSpread(p, k) / t.initialSpread[k];
     } else {
       double lo = std::numeric_limits<double>::max();
       double hi = -lo;

@@ -512,6 +512,7 @@ TEST(ModelConversion, TriaxialMidShearResumesExactly)
   EXPECT_EQ(back.test.settings.mode, dem::TestMode::Triaxial);
   EXPECT_EQ(back.test.stage, model.test.stage);
   EXPECT_EQ(back.test.initialLength, model.test.initialLength);
+  EXPECT_EQ(back.test.initialSpread, model.test.initialSpread);
   EXPECT_EQ(back.test.peakDeviator, model.test.peakDeviator);
   EXPECT_EQ(back.test.stepsSinceSample, model.test.stepsSinceSample);
   EXPECT_EQ(back.test.history, model.test.history);

@@ -151,6 +151,43 @@ TEST(Press, UnconfinedCompressionOfCementedSpecimenFails)
   EXPECT_GT(h[peakRow / 2][18], 0.2 * peak);
 }
 
+// Lateral strain of an unconfined specimen (no side walls) follows the particle centres:
+// a homogeneous lateral stretch x' = xbar + (1 + e)(x - xbar) reads back as strain -e
+// (shortening positive; reference: the definition of homogeneous strain), and one grain
+// flung far away moves it by at most 2 dx / (N spread) (the mean absolute deviation
+// changes by at most 2 dx / N), where the particles' extent would follow the grain.
+TEST(Press, UnconfinedLateralStrainFollowsTheCentres)
+{
+  Model m = specimen(300, 0.02, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  startLoadTest(m, s);
+  ASSERT_GT(m.test.initialSpread[0], 0.0);
+  ASSERT_EQ(m.test.initialSpread[2], 0.0) << "the platen axis is measured between the platens";
+  Simulation sim(m);
+  EXPECT_NEAR(sim.measurements().strain[0], 0.0, 1e-15);
+  const double e = 0.01;
+  Particles& p = m.particles;
+  for (int k = 0; k < 2; ++k) {
+    double mean = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      mean += p.position[i][k];
+    }
+    mean /= static_cast<double>(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p.position[i][k] = mean + (1.0 + (k == 0 ? e : 0.5 * e)) * (p.position[i][k] - mean);
+    }
+  }
+  const TestMeasurements stretched = sim.measurements();
+  EXPECT_NEAR(stretched.strain[0], -e, 1e-12);
+  EXPECT_NEAR(stretched.strain[1], -0.5 * e, 1e-12);
+  const double dx = 10.0 * m.domain.size.x();
+  p.position[0].x() += dx;
+  const double bound = 2.0 * dx / (static_cast<double>(p.size()) * m.test.initialSpread[0]);
+  EXPECT_LE(std::abs(sim.measurements().strain[0] - stretched.strain[0]), bound);
+  EXPECT_GT(sim.measurements().strain[0], -0.5) << "not the extent (which would read about -10)";
+}
+
 // Setting Mode back to Off restores all six walls at the box.
 TEST(Press, ModeOffRestoresTheBox)
 {

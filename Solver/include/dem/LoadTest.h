@@ -18,6 +18,7 @@
 namespace dem {
 
 struct Model;
+struct Particles;
 
 enum class TestMode : std::uint8_t { Off = 0, Compression = 1, Tension = 2, Triaxial = 3, Isotropic = 4 };
 enum class TestStage : std::uint8_t { Idle = 0, Consolidate = 1, Shear = 2, Done = 3 };
@@ -48,6 +49,9 @@ struct LoadTestState {
   TestStage stage = TestStage::Idle;
   std::array<double, 3> initialLength{ { 0.0, 0.0, 0.0 } }; ///< m, specimen size at the start
   double initialVolume = 0.0;      ///< m^3
+  /// m, centreSpread() of the particles along each unwalled side axis at the start of a
+  /// Compression or Tension test (0 on walled axes): the reference of the lateral strain.
+  std::array<double, 3> initialSpread{ { 0.0, 0.0, 0.0 } };
   double peakStress = 0.0;         ///< Pa, largest axial stress so far
   double peakDeviator = 0.0;       ///< Pa, largest axial minus lateral stress so far
   std::int64_t settledChecks = 0;  ///< consecutive samples with every servo face settled
@@ -68,6 +72,14 @@ struct TestMeasurements {
   double inertialNumber = 0.0; ///< -, strain rate x mean diameter x sqrt(density / mean stress)
   double suggestedStrainRate = 0.0; ///< 1/s, the rate giving an inertial number of 1e-4
 };
+
+/// Spread of the particle centres along an axis (m): their mean absolute deviation from
+/// the mean, sum |x_i - xbar| / N, summed in slot order. A homogeneous deformation
+/// x' = xbar + (1 + e)(x - xbar) scales it by exactly (1 + e), and one particle that flies
+/// off moves it by O(1/N) of its distance, where the particles' extent would follow it
+/// all the way. The lateral strain of an unconfined specimen (no side walls) is measured
+/// with it: length = initial length x spread / initial spread.
+double centreSpread(const Particles& particles, int axis);
 
 /// Throws InputError naming the parameter for an invalid setting (for the given mode).
 void validate(const LoadTestSettings& settings);
