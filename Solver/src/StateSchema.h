@@ -196,6 +196,7 @@ void visitModel(IO& io, Model& m)
   io.f64("test/state/peak_deviator", t.peakDeviator, "Pa");
   io.i64("test/state/settled_checks", t.settledChecks, "1");
   io.i64("test/state/steps_since_sample", t.stepsSinceSample, "1");
+  io.doubles3("test/state/initial_spread", t.initialSpread, "m");
   io.table("test/history", t.history);
 }
 

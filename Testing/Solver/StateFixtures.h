@@ -184,7 +184,7 @@ inline std::string firstDifference(const Model& a, const Model& b)
   }
   if (a.test.stage != b.test.stage || std::memcmp(&a.test.peakStress, &b.test.peakStress, 8) ||
       std::memcmp(&a.test.peakDeviator, &b.test.peakDeviator, 8) || a.test.settledChecks != b.test.settledChecks ||
-      a.test.stepsSinceSample != b.test.stepsSinceSample) {
+      a.test.stepsSinceSample != b.test.stepsSinceSample || a.test.initialSpread != b.test.initialSpread) {
     return "test/state";
   }
   if (std::memcmp(&a.clock.time, &b.clock.time, 8) || a.clock.step != b.clock.step ||

@@ -177,6 +177,7 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_EQ(s.settleTolerance, t.settleTolerance);
   EXPECT_EQ(a.test.initialLength, b.test.initialLength);
   EXPECT_EQ(a.test.initialVolume, b.test.initialVolume);
+  EXPECT_EQ(a.test.initialSpread, b.test.initialSpread);
   for (std::size_t w = 0; w < a.walls.size(); ++w) {
     EXPECT_EQ(a.walls[w].axis, b.walls[w].axis);
     EXPECT_EQ(a.walls[w].side, b.walls[w].side);
@@ -269,9 +270,9 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
   EXPECT_EQ(sizeof(Bonds), 16 * sizeof(std::vector<double>)) << "Bonds" << fix;
   EXPECT_EQ(sizeof(LoadTestSettings), 56u) << "LoadTestSettings" << fix;
-  EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 72 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
+  EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1176u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1200u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
