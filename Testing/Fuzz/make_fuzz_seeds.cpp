@@ -26,15 +26,17 @@ int main(int argc, char** argv)
   m.particles.append(dem::Vec3(0.006, 0.005, 0.005), 0.0011, m.nextId++);
   m.particles.append(dem::Vec3(0.005, 0.005, 0.007), 0.0011, m.nextId++);
   dem::updateMassProperties(m);
+  m.particles.velocity[1] = dem::Vec3(0.0, 0.01, 0.0); // sliding: the contacts carry slip history
+  m.particles.angularVelocity[2] = dem::Vec3(1.0, 0.0, 0.0);
   m.bonds.append(0, 1, 0.001, 1e12, 4e11, 1e6, 2e6, 0.5);
   dem::LoadTestSettings s;
   s.mode = dem::TestMode::Triaxial;
   s.confiningStress = 1e4;
-  s.sampleInterval = 5;
+  s.sampleInterval = 1;
   dem::startLoadTest(m, s);
   {
     dem::Simulation sim(m);
-    sim.advance(20);
+    sim.advance(3); // the overlapping pairs still touch: the seed has contact history
   }
   dem::writeState(m, dir + "/tiny.rdem");
   std::cout << "seeds: empty.rdem, tiny.rdem (" << m.contacts.size() << " contacts, " << m.test.history.size()
