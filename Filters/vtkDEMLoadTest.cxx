@@ -9,6 +9,7 @@
 #include "dem/Model.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "dem/StateFile.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkInformation.h>
@@ -144,6 +145,26 @@ void WriteTableCSV(vtkTable* table, const std::string& path)
 }
 }
 
+namespace
+{
+/// Whether a stage with these press settings continues the input model's test rather
+/// than starting a new one: the test is in progress (consolidate or shear) with exactly
+/// these settings, or both are Off (an Off run keeps its walls where they are).
+bool ContinuesInputTest(const dem::LoadTestState& test, const dem::LoadTestSettings& press)
+{
+  const dem::LoadTestSettings& s = test.settings;
+  if (press.mode == dem::TestMode::Off)
+  {
+    return s.mode == dem::TestMode::Off;
+  }
+  const bool same = s.mode == press.mode && s.axis == press.axis &&
+    s.confiningStress == press.confiningStress && s.strainRate == press.strainRate &&
+    s.maxStrain == press.maxStrain && s.servoAlpha == press.servoAlpha &&
+    s.sampleInterval == press.sampleInterval && s.settleTolerance == press.settleTolerance;
+  return same && (test.stage == dem::TestStage::Consolidate || test.stage == dem::TestStage::Shear);
+}
+}
+
 struct vtkDEMLoadTest::vtkInternals
 {
   bool Valid = false;
@@ -156,7 +177,75 @@ struct vtkDEMLoadTest::vtkInternals
   std::int64_t StepsPerFrame = 1;
   std::map<int, dem::Model> Checkpoints;
   std::string GravityNote;
+  int SavedFrame = -1;     ///< frame last written to SavedPath (-1: none since the rebuild)
+  std::string SavedPath;
 };
+
+void vtkDEMLoadTest::SetCheckpointFile(const char* path)
+{
+  const std::string now = this->CheckpointFile ? this->CheckpointFile : "";
+  const std::string wanted = path ? path : "";
+  if (now == wanted)
+  {
+    return;
+  }
+  delete[] this->CheckpointFile;
+  this->CheckpointFile = nullptr;
+  if (path)
+  {
+    this->CheckpointFile = new char[wanted.size() + 1];
+    std::copy(wanted.c_str(), wanted.c_str() + wanted.size() + 1, this->CheckpointFile);
+  }
+  // Where the run is saved is not a parameter of the run: keep the computed frames.
+  const bool fresh = this->Internals->Valid && this->Internals->BuildTime >= this->GetMTime();
+  this->Modified();
+  if (fresh)
+  {
+    this->Internals->BuildTime = this->GetMTime();
+  }
+}
+
+void vtkDEMLoadTest::SetCheckpointEvery(int frames)
+{
+  if (frames == this->CheckpointEvery)
+  {
+    return;
+  }
+  this->CheckpointEvery = frames;
+  const bool fresh = this->Internals->Valid && this->Internals->BuildTime >= this->GetMTime();
+  this->Modified();
+  if (fresh)
+  {
+    this->Internals->BuildTime = this->GetMTime();
+  }
+}
+
+void vtkDEMLoadTest::WriteCheckpoint()
+{
+  vtkInternals& in = *this->Internals;
+  // Never overwrite a checkpoint with an earlier frame of the same run (going back in
+  // time replays frames that were already saved).
+  if (!this->CheckpointFile || !*this->CheckpointFile ||
+    (in.SavedPath == this->CheckpointFile && in.Frame <= in.SavedFrame))
+  {
+    return;
+  }
+  try
+  {
+    dem::writeState(in.Model, this->CheckpointFile);
+    if (!in.Model.test.history.empty())
+    {
+      dem::writeHistoryCSV(in.Model.test, dem::historyPathFor(this->CheckpointFile));
+    }
+    in.SavedFrame = in.Frame;
+    in.SavedPath = this->CheckpointFile;
+  }
+  catch (const std::exception& e)
+  {
+    // The run goes on; the user learns that the checkpoint is missing.
+    vtkErrorMacro(<< "Checkpoint File: " << e.what());
+  }
+}
 
 vtkDEMLoadTest::vtkDEMLoadTest()
   : Mode(MODE_OFF)
@@ -187,6 +276,7 @@ vtkDEMLoadTest::vtkDEMLoadTest()
 vtkDEMLoadTest::~vtkDEMLoadTest()
 {
   this->SetHistoryFile(nullptr);
+  delete[] this->CheckpointFile;
   delete this->Internals;
 }
 
@@ -291,6 +381,11 @@ int vtkDEMLoadTest::RequestData(
       throw dem::InputError("Number Of Frames = " + std::to_string(this->NumberOfFrames) +
         " is out of range: it must be 1 or more.");
     }
+    if (this->CheckpointEvery < 0)
+    {
+      throw dem::InputError("Checkpoint Every = " + std::to_string(this->CheckpointEvery) +
+        " is out of range: it must be 0 (only the last frame) or more frames.");
+    }
     if (this->StepsPerBatch < 1)
     {
       throw dem::InputError("Steps per Batch = " + std::to_string(this->StepsPerBatch) +
@@ -328,6 +423,7 @@ int vtkDEMLoadTest::RequestData(
       in.Failed = false;
       in.Checkpoints.clear();
       in.Simulation.reset();
+      in.SavedFrame = -1;
       in.Model = rockdem::MultiBlockToModel(input);
       dem::SolverSettings& s = in.Model.solver;
       s.contactLaw = static_cast<dem::ContactLaw>(this->ContactLaw);
@@ -344,8 +440,17 @@ int vtkDEMLoadTest::RequestData(
         in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
           " m/s^2 along Z acts along -Y in the section plane.";
       }
-      // Start the press (Mode Off restores the box) before the simulation sees the model.
-      dem::startLoadTest(in.Model, press);
+      // Start the press (Mode Off restores the box) before the simulation sees the model,
+      // unless the input's test is this one in progress (a reopened state file): then it
+      // continues exactly where it stopped.
+      if (this->ContinueTest && ContinuesInputTest(in.Model.test, press))
+      {
+        in.Model.test.settings = press;
+      }
+      else
+      {
+        dem::startLoadTest(in.Model, press);
+      }
       in.Simulation.reset(new dem::Simulation(in.Model));
       in.StepsPerFrame =
         std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
@@ -406,6 +511,10 @@ int vtkDEMLoadTest::RequestData(
       }
       ++in.Frame;
       in.Checkpoints[in.Frame] = in.Model;
+      if (this->CheckpointEvery > 0 && in.Frame % this->CheckpointEvery == 0)
+      {
+        this->WriteCheckpoint();
+      }
       // Keep the checkpoints within budget: drop every other one (never frame 0).
       double bytes = 0.0;
       for (const auto& c : in.Checkpoints)
@@ -452,6 +561,10 @@ int vtkDEMLoadTest::RequestData(
     return 0;
   }
 
+  if (in.Frame == this->NumberOfFrames)
+  {
+    this->WriteCheckpoint(); // the end of the run
+  }
   rockdem::ModelToMultiBlock(in.Model, output);
   const dem::Diagnostics d = in.Simulation->diagnostics();
   this->CriticalTimestep = in.Simulation->criticalTimestep();
@@ -536,6 +649,9 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ServoAlpha: " << this->ServoAlpha << "\n";
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
+  os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";
+  os << indent << "CheckpointEvery: " << this->CheckpointEvery << "\n";
+  os << indent << "ContinueTest: " << this->ContinueTest << "\n";
   os << indent << "Stage: " << this->StageText << "\n";
   os << indent << "AxialStress: " << this->AxialStress << " Pa\n";
   os << indent << "PeakStress: " << this->PeakStress << " Pa\n";

@@ -16,6 +16,12 @@
  * If the run goes unstable it stops with an error naming the cause and outputs the
  * last good state.
  *
+ * Saving and reopening (Documentation/StateFile.md): with a Checkpoint File the model is
+ * written as a RockDEM state file every Checkpoint Every frames and at the last frame
+ * (atomically, the history as CSV beside it). An input model whose test is in progress
+ * with the same settings as this stage (a model read by DEM State Reader) continues that
+ * test instead of starting a new one, so a saved run resumes exactly (Continue Test).
+ *
  * Units: SI (s, m/s^2, J).
  */
 #ifndef vtkDEMLoadTest_h
@@ -93,6 +99,29 @@ public:
   /// Optional CSV file the history is written to after every update (empty: none).
   vtkSetStringMacro(HistoryFile);
   vtkGetStringMacro(HistoryFile);
+  ///@}
+
+  ///@{
+  /// Optional RockDEM state file (.rdem) the model is written to every CheckpointEvery
+  /// frames and at the last frame, with the history as CSV beside it (empty: none).
+  /// Changing it (or CheckpointEvery) does not discard the computed run.
+  void SetCheckpointFile(const char* path);
+  vtkGetStringMacro(CheckpointFile);
+  ///@}
+
+  ///@{
+  /// Frames between checkpoints (>= 0); 0: only at the last frame.
+  void SetCheckpointEvery(int frames);
+  vtkGetMacro(CheckpointEvery, int);
+  ///@}
+
+  ///@{
+  /// When the input model has a test in progress (consolidate or shear) with exactly this
+  /// stage's settings, or both are Off, continue it rather than start a new test (on by
+  /// default: a model read from a state file resumes exactly).
+  vtkSetMacro(ContinueTest, int);
+  vtkGetMacro(ContinueTest, int);
+  vtkBooleanMacro(ContinueTest, int);
   ///@}
 
   ///@{
@@ -213,6 +242,9 @@ protected:
   double ServoAlpha = 0.5;
   int SampleInterval = 100;
   char* HistoryFile = nullptr;
+  char* CheckpointFile = nullptr;
+  int CheckpointEvery = 0;
+  int ContinueTest = 1;
 
   double CriticalTimestep;
   double Timestep;
@@ -243,6 +275,8 @@ protected:
 private:
   vtkDEMLoadTest(const vtkDEMLoadTest&) = delete;
   void operator=(const vtkDEMLoadTest&) = delete;
+
+  void WriteCheckpoint();
 
   struct vtkInternals;
   vtkInternals* Internals;

@@ -12,6 +12,7 @@ PKGS=(
   libeigen3-dev libhdf5-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
   libgtest-dev googletest
+  clang libclang-rt-14-dev
   xvfb python3-numpy python3-matplotlib
 )
 missing=()

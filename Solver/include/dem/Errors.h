@@ -14,6 +14,15 @@ public:
   explicit InputError(const std::string& message) : std::invalid_argument(message) {}
 };
 
+/// Raised for a file that cannot be read or written, or whose content is not what it
+/// should be (a state file that is truncated, corrupt, of an unknown version, ...).
+/// what() names the file, what is wrong, the value found and what was expected. A
+/// FileError is an InputError, so code that reports input errors reports it too.
+class FileError : public InputError {
+public:
+  explicit FileError(const std::string& message) : InputError(message) {}
+};
+
 /// Formats a value the way error messages show it (shortest round-trip-ish, %.6g).
 std::string formatValue(double value);
 
