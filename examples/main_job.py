@@ -13,8 +13,9 @@ pack.png (the pack as spheres coloured by radius, with the domain box), pack_sum
 History table), stress_strain.png (the DEM Test chart), broken.png (the specimen after the
 test, spheres coloured by displacement, broken bonds in red), dfn.csv and dfn.png (the
 fracture discs exported by DEM Fractures To DFN just past the peak, one row per disc, and
-a picture of them inside the grains), results.csv (one row: the measured values and
-timings).
+a picture of them inside the grains), specimen.rdem and specimen.history.csv (the state
+file of the tested specimen and its history), main_job.pvsm (the ParaView state of the
+pipeline), results.csv (one row: the measured values and timings).
 """
 import argparse
 import os
@@ -189,6 +190,11 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
                               SampleInterval=50, HistoryFile=history_file, progress=progress)
     press = result["proxy"]
     lap("compression")
+    # The tested specimen as a state file (Documentation/StateFile.md): the exact model at
+    # the end of the test (DEM State Reader reopens it), its history beside it.
+    state_file = os.path.join(args.output, "specimen.rdem")
+    SaveData(state_file, proxy=press)
+    print("state file: %s (%.1f MB)" % (state_file, os.path.getsize(state_file) / 1e6), flush=True)
     ucs, e_mod, nu = result["ucs"], result["E"], result["nu"]
     broken = result["broken_bonds"]
     print("UCS (Peak Stress): %.4g Pa; Young's modulus: %.4g Pa; Poisson's ratio: %.3f; "
@@ -253,6 +259,8 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
         discs, rockdem.read_only(dfn, "TensileDiscs"),
         rockdem.read_only(dfn, "ShearDiscs"), dfn_png, dfn_csv), flush=True)
     lap("DFN")
+    # The pipeline recipe: File > Load State (or LoadState in pvpython) rebuilds it.
+    SaveState(os.path.join(args.output, "main_job.pvsm"))
 
     results = os.path.join(args.output, "results.csv")
     with open(results, "w") as f:
