@@ -90,13 +90,15 @@ public:
 
 private:
   void rebuildNeighbours(bool importModelHistory);
+  void rebuildWallContacts(bool carryHistory);
+  bool wallsMoved() const;
   void buildBondLists();
   void controlWalls();
   void sampleLoadTest();
   std::array<double, 3> specimenLengths() const;
   void computeBondForces(bool incrementState);
-  bool neighboursStale() const;
-  void computeForces(bool incrementHistory);
+  void computeForces(bool incrementHistory, bool closingKick);
+  double contactForceMagnitude(std::size_t particle) const;
   void step();
   void checkStability(const char* when) const;
   double availableEnergy() const;
