@@ -19,14 +19,13 @@ namespace {
 
 constexpr double Pi = 3.14159265358979323846;
 
-/// Sign of a velocity component for Cundall damping (0 at rest).
-double signOf(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
-
 /// Cundall local damping of one degree of freedom (PHYSICS.md s.1):
-/// F - alpha |F| sign(v).
+/// F - alpha |F| sign(v), with sign(0) = 0. Branch-free: the damping term takes the sign
+/// of v by copysign, and vanishes at v = 0.
 double cundall(double force, double velocity, double alpha)
 {
-  return force - alpha * std::abs(force) * signOf(velocity);
+  const double damping = std::copysign(alpha * std::abs(force), velocity); // N
+  return force - (velocity != 0.0 ? damping : 0.0);
 }
 
 /// Finds a particle's slot from its global id (ids are stable, slots are storage order).
@@ -227,20 +226,42 @@ struct Simulation::Impl {
 };
 
 namespace {
-/// Minimum-image separation b - a (m); z = 0 in a 2D section.
-Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
-{
-  Vec3 s = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (d.periodic[k]) {
-      s[k] -= d.size[k] * std::nearbyint(s[k] / d.size[k]);
+/// Minimum-image separation b - a (m); z = 0 in a 2D section. The domain's flags are
+/// copied once, for the hot loops (a box without periodic axes takes the plain difference).
+class MinimumImage {
+public:
+  explicit MinimumImage(const Domain& d)
+    : size_(d.size)
+    , periodic_(d.periodic)
+    , planar_(d.section2D)
+    , plain_(!d.periodic[0] && !d.periodic[1] && !d.periodic[2] && !d.section2D)
+  {
+  }
+  Vec3 operator()(const Vec3& a, const Vec3& b) const
+  {
+    Vec3 s = b - a;
+    if (plain_) {
+      return s;
     }
+    for (int k = 0; k < 3; ++k) {
+      if (periodic_[k]) {
+        s[k] -= size_[k] * std::nearbyint(s[k] / size_[k]);
+      }
+    }
+    if (planar_) {
+      s.z() = 0.0;
+    }
+    return s;
   }
-  if (d.section2D) {
-    s.z() = 0.0;
-  }
-  return s;
-}
+
+private:
+  Vec3 size_;
+  std::array<bool, 3> periodic_;
+  bool planar_;
+  bool plain_;
+};
+
+Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return MinimumImage(d)(a, b); }
 } // namespace
 
 Simulation::Simulation(Model& model)
@@ -586,12 +607,14 @@ void Simulation::computeForces(bool incrementHistory, bool closingKick)
   const double infinite = std::numeric_limits<double>::infinity();
   auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
 
+  const MinimumImage separationOf(d);
+
   // 1. Each pair once.
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long k = 0; k < pairs; ++k) {
     const std::uint32_t i = im.pairI[k];
     const std::uint32_t j = im.pairJ[k];
-    const Vec3 branch = separation(d, p.position[i], p.position[j]); // from i to j
+    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
     const double distance = branch.norm();
     const double overlap = p.radius[i] + p.radius[j] - distance;
     if (overlap <= 0.0 || distance == 0.0) {
@@ -1203,6 +1226,9 @@ void Simulation::step()
   const long count = static_cast<long>(p.size());
   const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = limit * limit;
+  const MinimumImage separationOf(d);
+  const std::array<bool, 3> periodic = d.periodic;
+  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
 
   // Half kick with the forces of the last step, then drift; note whether any particle
   // has moved half the skin since the neighbour list was built.
@@ -1222,8 +1248,8 @@ void Simulation::step()
     const Vec3 move = dt * p.velocity[i];
     p.position[i] += move;
     p.displacement[i] += move;
-    for (int k = 0; k < 3; ++k) {
-      if (d.periodic[k]) {
+    for (int k = 0; anyPeriodic && k < 3; ++k) {
+      if (periodic[k]) {
         const double lo = d.origin[k];
         const double length = d.size[k];
         if (p.position[i][k] < lo) {
@@ -1233,7 +1259,7 @@ void Simulation::step()
         }
       }
     }
-    if (separation(d, im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
       stale = true;
     }
   }
