@@ -376,16 +376,31 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
     const auto [rmin, rmax] = std::minmax_element(p.radius.begin(), p.radius.end());
     SizeClassGrids grids(d, *rmin, *rmax);
     grids.insertAll(p);
-    std::vector<std::size_t> keys;
-    for (std::size_t i = 0; i < n; ++i) {
-      grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
-      std::sort(keys.begin(), keys.end());
-      for (std::size_t j : keys) {
-        if (j > i) {
-          im.pairI.push_back(static_cast<std::uint32_t>(i));
-          im.pairJ.push_back(static_cast<std::uint32_t>(j));
+    // The queries run in parallel over fixed blocks of slots; each block's pairs are
+    // appended in block order, so the list, sorted by (i, j), does not depend on the
+    // number of threads.
+    const std::size_t blocks = im.parallel ? 8 * static_cast<std::size_t>(im.threads) : 1;
+    std::vector<std::vector<std::uint32_t>> blockI(blocks), blockJ(blocks);
+    const long blockCount = static_cast<long>(blocks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(im.threads) if (im.parallel)
+    for (long b = 0; b < blockCount; ++b) {
+      std::vector<std::size_t> keys;
+      const std::size_t first = n * static_cast<std::size_t>(b) / blocks;
+      const std::size_t last = n * static_cast<std::size_t>(b + 1) / blocks;
+      for (std::size_t i = first; i < last; ++i) {
+        grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t j : keys) {
+          if (j > i) {
+            blockI[b].push_back(static_cast<std::uint32_t>(i));
+            blockJ[b].push_back(static_cast<std::uint32_t>(j));
+          }
         }
       }
+    }
+    for (std::size_t b = 0; b < blocks; ++b) {
+      im.pairI.insert(im.pairI.end(), blockI[b].begin(), blockI[b].end());
+      im.pairJ.insert(im.pairJ.end(), blockJ[b].begin(), blockJ[b].end());
     }
   }
   const std::size_t pairs = im.pairI.size();
@@ -395,7 +410,9 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
   const bool planar = d.section2D;
   const double slab = d.slabThickness();
   im.pairConstants.resize(pairs);
-  for (std::size_t k = 0; k < pairs; ++k) {
+  const long pairCount = static_cast<long>(pairs);
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairCount; ++k) {
     const std::uint32_t i = im.pairI[k];
     const std::uint32_t j = im.pairJ[k];
     im.pairConstants[k] = contactConstants(contactModel_,
