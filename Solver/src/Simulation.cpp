@@ -187,6 +187,10 @@ struct Simulation::Impl {
   // an entry is 2 * pair + (1 if the particle is j of the pair).
   std::vector<std::size_t> adjacencyStart;
   std::vector<std::size_t> adjacency;
+  // 1: the particle has a touching pair this step (set by the pair loop, cleared by the
+  // gather). A particle without one skips its gather list, whose pair entries lie all
+  // over memory in a large pack.
+  std::vector<std::uint8_t> touching;
   // Wall contacts, sparse: one entry per particle and active wall whose gap was below the
   // skin when the list was built (the particles at positionAtBuild, the walls at
   // wallPositionAtBuild), sorted by (slot, wall). Entries of particle i are
@@ -307,6 +311,7 @@ Simulation::Simulation(Model& model)
     im.inverseInertia[i] = fixed ? 0.0 : 1.0 / p.inertia[i];
   }
   im.undampedForce.assign(n, Vec3::Zero());
+  im.touching.assign(n, 0);
   const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
   im.skinDistance = s.skin * rmin;
   im.smallestRadius = rmin;
@@ -679,6 +684,13 @@ void Simulation::computeForces(bool incrementHistory, bool closingKick)
     im.pairTorqueI[k] = torqueI;
     im.pairTorqueJ[k] = torqueJ;
     im.pairNormal[k] = fn;
+    if (fn != 0.0) {
+      // Two threads may mark the same particle: both write 1.
+#pragma omp atomic write
+      im.touching[i] = 1;
+#pragma omp atomic write
+      im.touching[j] = 1;
+    }
   }
 
   // 2. Bonds, each once (state updated and failure checked only on a real step).
@@ -758,7 +770,10 @@ void Simulation::computeForces(bool incrementHistory, bool closingKick)
     const std::size_t i = static_cast<std::size_t>(li);
     Vec3 force = p.mass[i] * gravity;
     Vec3 torque = Vec3::Zero();
-    for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
+    // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+    const std::size_t pairEnd = im.touching[i] ? im.adjacencyStart[i + 1] : im.adjacencyStart[i];
+    im.touching[i] = 0;
+    for (std::size_t e = im.adjacencyStart[i]; e < pairEnd; ++e) {
       const std::size_t k = im.adjacency[e] >> 1;
       if (im.pairNormal[k] == 0.0) {
         continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
