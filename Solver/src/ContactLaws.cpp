@@ -44,17 +44,6 @@ double dimensionlessForce(ContactLaw law, double c, double x, double xdot)
 
 } // namespace
 
-Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
-{
-  const double length = v.norm();
-  if (length == 0.0) {
-    return Vec3::Zero();
-  }
-  const Vec3 projected = inPlane(v, n);
-  const double projectedLength = projected.norm();
-  return projectedLength > 0.0 ? Vec3(projected * (length / projectedLength)) : Vec3(Vec3::Zero());
-}
-
 double restitutionForDamping(ContactLaw law, double c)
 {
   // Head-on collision in dimensionless form (x = delta / delta0, t = t / (delta0 / v)):
@@ -176,6 +165,27 @@ PairProperties wallProperties(const ContactModel& model, double radius, double m
   p.linearNormalStiffness = linearStiffness(E, radius, radius, section2D, slab);
   p.linearShearStiffness = p.linearNormalStiffness * shearToNormalRatio(nu);
   return p;
+}
+
+ContactConstants contactConstants(const ContactModel& model, const PairProperties& pair)
+{
+  ContactConstants c;
+  // Two kinematic bodies (both of infinite mass) have no relative inertia to damp: their
+  // contact is elastic only.
+  const bool damped = std::isfinite(pair.effectiveMass) && model.dampingCoefficient > 0.0;
+  if (model.law == ContactLaw::HertzMindlin) {
+    const double rootRadius = std::sqrt(pair.effectiveRadius);
+    c.normalStiffness = 4.0 / 3.0 * pair.effectiveModulus * rootRadius;
+    c.normalDamping = damped ? model.dampingCoefficient * std::sqrt(pair.effectiveMass * c.normalStiffness) : 0.0;
+    c.tangentialStiffness = 8.0 * pair.effectiveShearModulus * rootRadius;
+  } else {
+    c.normalStiffness = pair.linearNormalStiffness;
+    c.normalDamping = damped
+      ? 2.0 * model.dampingCoefficient * std::sqrt(pair.effectiveMass * pair.linearNormalStiffness)
+      : 0.0;
+    c.tangentialStiffness = pair.linearShearStiffness;
+  }
+  return c;
 }
 
 double hertzElasticForce(double effectiveModulus, double effectiveRadius, double overlap)

@@ -19,14 +19,13 @@ namespace {
 
 constexpr double Pi = 3.14159265358979323846;
 
-/// Sign of a velocity component for Cundall damping (0 at rest).
-double signOf(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
-
 /// Cundall local damping of one degree of freedom (PHYSICS.md s.1):
-/// F - alpha |F| sign(v).
+/// F - alpha |F| sign(v), with sign(0) = 0. Branch-free: the damping term takes the sign
+/// of v by copysign, and vanishes at v = 0.
 double cundall(double force, double velocity, double alpha)
 {
-  return force - alpha * std::abs(force) * signOf(velocity);
+  const double damping = std::copysign(alpha * std::abs(force), velocity); // N
+  return force - (velocity != 0.0 ? damping : 0.0);
 }
 
 /// Finds a particle's slot from its global id (ids are stable, slots are storage order).
@@ -177,26 +176,39 @@ void resetWalls(Model& model)
 struct Simulation::Impl {
   // Neighbour list: particle pairs (slots i < j) within reach, sorted by (i, j).
   std::vector<std::uint32_t> pairI, pairJ;
+  std::vector<ContactConstants> pairConstants; // per pair: stiffness and damping factors
   std::vector<Vec3> pairSpring;      // m, tangential history
   std::vector<Vec3> pairRolling;     // N m, rolling history (empty if rolling is off)
   std::vector<Vec3> pairForce;       // N, force on i (j gets the opposite)
   std::vector<Vec3> pairTorqueI;     // N m
   std::vector<Vec3> pairTorqueJ;     // N m
-  std::vector<double> pairNormal;    // N, normal force magnitude (0 when not touching)
-  std::vector<double> pairMagnitude; // N, |force on i| (for the unbalanced force ratio)
+  std::vector<double> pairNormal;    // N, normal force magnitude (0: adds nothing, the gather skips it)
   // Per-particle gather lists (CSR): entries of particle i in [start[i], start[i+1]);
   // an entry is 2 * pair + (1 if the particle is j of the pair).
   std::vector<std::size_t> adjacencyStart;
   std::vector<std::size_t> adjacency;
-  // Wall contacts: dense, particle-major (slot * 6 + wall).
-  std::vector<Vec3> wallSpring;
-  std::vector<Vec3> wallRolling;
-  std::vector<Vec3> wallForce;       // N, force of wall w on particle i
-  std::vector<Vec3> wallTorque;      // N m
+  // 1: the particle has a touching pair this step (set by the pair loop, cleared by the
+  // gather). A particle without one skips its gather list, whose pair entries lie all
+  // over memory in a large pack.
+  std::vector<std::uint8_t> touching;
+  // Wall contacts, sparse: one entry per particle and active wall whose gap was below the
+  // skin when the list was built (the particles at positionAtBuild, the walls at
+  // wallPositionAtBuild), sorted by (slot, wall). Entries of particle i are
+  // [wallStart[i], wallStart[i+1]). The list is rebuilt with the neighbour list, and
+  // when a wall has moved half the skin or was switched on or off.
+  std::vector<std::uint32_t> wallStart;
+  std::vector<std::uint32_t> wallSlot;     // particle slot of each entry
+  std::vector<std::uint8_t> wallIndex;     // wall (0..5) of each entry
+  std::vector<ContactConstants> wallConstants;
+  std::vector<std::uint8_t> wallTouching;  // 1: overlapping at the last evaluation
+  std::vector<Vec3> wallSpring;      // m
+  std::vector<Vec3> wallRolling;     // N m (empty if rolling is off)
+  std::vector<Vec3> wallForce;       // N, force of the wall on the particle
   std::vector<double> wallNormal;    // N
-  std::vector<std::uint8_t> wallMask; // bit w set: particle touches wall w (gather reads only those)
   std::vector<double> wallStiffness; // N/m, normal stiffness of each wall contact (servo gain)
   std::vector<double> wallElastic;   // N, elastic part of each wall contact's normal force
+  std::array<double, 6> wallPositionAtBuild{};
+  std::array<bool, 6> wallActiveAtBuild{};
   std::vector<Vec3> undampedForce;   // N, net force before local damping (platen reactions)
   // Bonds (static list, model.bonds order): slots of A and B, per-bond results, and
   // per-particle gather lists (entry 2 * bond + 1 if the particle is B).
@@ -209,30 +221,51 @@ struct Simulation::Impl {
   // Positions at the last neighbour build (for the skin criterion).
   std::vector<Vec3> positionAtBuild;
   double skinDistance = 0.0;         // m
+  double smallestRadius = 0.0;       // m
   std::vector<double> inverseMass;   // 1/kg (0 for fixed particles)
   std::vector<double> inverseInertia;
-  std::vector<double> contactForceMagnitude; // N, sum of |contact forces| per particle (diagnostics)
-  std::vector<double> unbalancedForce;       // N, |net force| per particle before damping
   int threads = 1;
   bool parallel = false;
   bool broken = false;
 };
 
 namespace {
-/// Minimum-image separation b - a (m); z = 0 in a 2D section.
-Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
-{
-  Vec3 s = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (d.periodic[k]) {
-      s[k] -= d.size[k] * std::nearbyint(s[k] / d.size[k]);
+/// Minimum-image separation b - a (m); z = 0 in a 2D section. The domain's flags are
+/// copied once, for the hot loops (a box without periodic axes takes the plain difference).
+class MinimumImage {
+public:
+  explicit MinimumImage(const Domain& d)
+    : size_(d.size)
+    , periodic_(d.periodic)
+    , planar_(d.section2D)
+    , plain_(!d.periodic[0] && !d.periodic[1] && !d.periodic[2] && !d.section2D)
+  {
+  }
+  Vec3 operator()(const Vec3& a, const Vec3& b) const
+  {
+    Vec3 s = b - a;
+    if (plain_) {
+      return s;
     }
+    for (int k = 0; k < 3; ++k) {
+      if (periodic_[k]) {
+        s[k] -= size_[k] * std::nearbyint(s[k] / size_[k]);
+      }
+    }
+    if (planar_) {
+      s.z() = 0.0;
+    }
+    return s;
   }
-  if (d.section2D) {
-    s.z() = 0.0;
-  }
-  return s;
-}
+
+private:
+  Vec3 size_;
+  std::array<bool, 3> periodic_;
+  bool planar_;
+  bool plain_;
+};
+
+Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return MinimumImage(d)(a, b); }
 } // namespace
 
 Simulation::Simulation(Model& model)
@@ -277,20 +310,11 @@ Simulation::Simulation(Model& model)
     im.inverseMass[i] = fixed ? 0.0 : 1.0 / p.mass[i];
     im.inverseInertia[i] = fixed ? 0.0 : 1.0 / p.inertia[i];
   }
-  const bool rolling = contactModel_.rollingFriction > 0.0;
-  im.wallSpring.assign(6 * n, Vec3::Zero());
-  im.wallRolling.assign(rolling ? 6 * n : 0, Vec3::Zero());
-  im.wallForce.assign(6 * n, Vec3::Zero());
-  im.wallTorque.assign(6 * n, Vec3::Zero());
-  im.wallNormal.assign(6 * n, 0.0);
-  im.wallMask.assign(n, 0);
-  im.wallStiffness.assign(6 * n, 0.0);
-  im.wallElastic.assign(6 * n, 0.0);
   im.undampedForce.assign(n, Vec3::Zero());
-  im.contactForceMagnitude.assign(n, 0.0);
-  im.unbalancedForce.assign(n, 0.0);
+  im.touching.assign(n, 0);
   const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
   im.skinDistance = s.skin * rmin;
+  im.smallestRadius = rmin;
   im.threads = s.threads > 0 ? s.threads : availableThreads();
   im.parallel = static_cast<std::int64_t>(n) >= s.parallelThreshold && im.threads > 1;
   if (!im.parallel) {
@@ -303,7 +327,7 @@ Simulation::Simulation(Model& model)
   if (model.clock.step == 0) {
     // A model that has never stepped has no forces yet: compute them (no history
     // increment) so that the first half kick sees gravity and the initial contacts.
-    computeForces(false);
+    computeForces(false, false);
   } else {
     // Resumed: the stored forces, torques, springs and wall reactions are those of the
     // last step and must stay bit for bit. Evaluate the contacts once for the
@@ -313,7 +337,7 @@ Simulation::Simulation(Model& model)
     const std::vector<Wall> walls = model.walls;
     const Impl saved = *impl_;
     const Bonds bonds = model.bonds;
-    computeForces(false);
+    computeForces(false, false);
     model.bonds = bonds;
     model.particles.force = force;
     model.particles.torque = torque;
@@ -357,26 +381,56 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
     const auto [rmin, rmax] = std::minmax_element(p.radius.begin(), p.radius.end());
     SizeClassGrids grids(d, *rmin, *rmax);
     grids.insertAll(p);
-    std::vector<std::size_t> keys;
-    for (std::size_t i = 0; i < n; ++i) {
-      grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
-      std::sort(keys.begin(), keys.end());
-      for (std::size_t j : keys) {
-        if (j > i) {
-          im.pairI.push_back(static_cast<std::uint32_t>(i));
-          im.pairJ.push_back(static_cast<std::uint32_t>(j));
+    // The queries run in parallel over fixed blocks of slots; each block's pairs are
+    // appended in block order, so the list, sorted by (i, j), does not depend on the
+    // number of threads.
+    const std::size_t blocks = im.parallel ? 8 * static_cast<std::size_t>(im.threads) : 1;
+    std::vector<std::vector<std::uint32_t>> blockI(blocks), blockJ(blocks);
+    const long blockCount = static_cast<long>(blocks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(im.threads) if (im.parallel)
+    for (long b = 0; b < blockCount; ++b) {
+      std::vector<std::size_t> keys;
+      const std::size_t first = n * static_cast<std::size_t>(b) / blocks;
+      const std::size_t last = n * static_cast<std::size_t>(b + 1) / blocks;
+      for (std::size_t i = first; i < last; ++i) {
+        grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t j : keys) {
+          if (j > i) {
+            blockI[b].push_back(static_cast<std::uint32_t>(i));
+            blockJ[b].push_back(static_cast<std::uint32_t>(j));
+          }
         }
       }
     }
+    for (std::size_t b = 0; b < blocks; ++b) {
+      im.pairI.insert(im.pairI.end(), blockI[b].begin(), blockI[b].end());
+      im.pairJ.insert(im.pairJ.end(), blockJ[b].begin(), blockJ[b].end());
+    }
   }
   const std::size_t pairs = im.pairI.size();
+  // The contact law's constants of each pair (they depend on radii and masses only).
+  const double infinite = std::numeric_limits<double>::infinity();
+  auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  im.pairConstants.resize(pairs);
+  const long pairCount = static_cast<long>(pairs);
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairCount; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    im.pairConstants[k] = contactConstants(contactModel_,
+      pairProperties(contactModel_, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab));
+  }
   im.pairSpring.assign(pairs, Vec3::Zero());
   im.pairRolling.assign(rolling ? pairs : 0, Vec3::Zero());
   im.pairForce.assign(pairs, Vec3::Zero());
   im.pairTorqueI.assign(pairs, Vec3::Zero());
   im.pairTorqueJ.assign(pairs, Vec3::Zero());
   im.pairNormal.assign(pairs, 0.0);
-  im.pairMagnitude.assign(pairs, 0.0);
+  im.positionAtBuild = p.position;
+  rebuildWallContacts(!importModelHistory);
 
   if (importModelHistory) {
     // Stored history is keyed by global ids: map ids to slots, then find each pair.
@@ -389,12 +443,17 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
         continue;
       }
       if (h.idB[c] < 0) {
+        // A wall contact: its entry, if the particle is near that wall. One that is not
+        // cannot touch before the list is next rebuilt, and its history would be
+        // cleared at the first step anyway.
         const std::size_t w = static_cast<std::size_t>(-h.idB[c] - 1);
-        if (w < 6) {
-          im.wallSpring[a * 6 + w] = h.shearSpring[c];
-          im.wallMask[a] |= static_cast<std::uint8_t>(1u << w);
-          if (rolling && c < h.rollingSpring.size()) {
-            im.wallRolling[a * 6 + w] = h.rollingSpring[c];
+        for (std::size_t e = im.wallStart[a]; e < im.wallStart[a + 1]; ++e) {
+          if (im.wallIndex[e] == w) {
+            im.wallSpring[e] = h.shearSpring[c];
+            im.wallTouching[e] = 1; // cleared at the next evaluation if it no longer touches
+            if (rolling && c < h.rollingSpring.size()) {
+              im.wallRolling[e] = h.rollingSpring[c];
+            }
           }
         }
         continue;
@@ -452,17 +511,99 @@ void Simulation::rebuildNeighbours(bool importModelHistory)
   for (std::size_t k = 0; k < pairs; ++k) {
     im.adjacency[fill[im.pairI[k]]++] = 2 * k;
   }
-  im.positionAtBuild = p.position;
 }
 
-bool Simulation::neighboursStale() const
+void Simulation::rebuildWallContacts(bool carryHistory)
+{
+  Impl& im = *impl_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const std::size_t n = p.size();
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+  const double infinite = std::numeric_limits<double>::infinity();
+
+  std::vector<std::uint32_t> oldSlot, oldStart;
+  std::vector<std::uint8_t> oldIndex, oldTouching;
+  std::vector<Vec3> oldSpring, oldRolling;
+  if (carryHistory) {
+    oldSlot.swap(im.wallSlot);
+    oldStart.swap(im.wallStart);
+    oldIndex.swap(im.wallIndex);
+    oldTouching.swap(im.wallTouching);
+    oldSpring.swap(im.wallSpring);
+    oldRolling.swap(im.wallRolling);
+  }
+  im.wallSlot.clear();
+  im.wallIndex.clear();
+  im.wallStart.assign(n + 1, 0);
+  // A particle is a candidate for a wall when its gap was below the skin at the build.
+  // Until the next build, the particle moves by at most half the skin (from
+  // positionAtBuild) and the wall by at most half the skin: together, never more than
+  // the gap, so no contact is missed.
+  for (std::size_t i = 0; i < n; ++i) {
+    im.wallStart[i] = static_cast<std::uint32_t>(im.wallSlot.size());
+    for (int w = 0; w < 6; ++w) {
+      const Wall& wall = model_.walls[w];
+      const double side = wall.side == 0 ? 1.0 : -1.0;
+      const double gap = (im.positionAtBuild[i][wall.axis] - wall.position) * side - p.radius[i];
+      if (wall.active && gap < im.skinDistance) {
+        im.wallSlot.push_back(static_cast<std::uint32_t>(i));
+        im.wallIndex.push_back(static_cast<std::uint8_t>(w));
+      }
+    }
+  }
+  const std::size_t entries = im.wallSlot.size();
+  im.wallStart[n] = static_cast<std::uint32_t>(entries);
+  for (int w = 0; w < 6; ++w) {
+    im.wallPositionAtBuild[w] = model_.walls[w].position;
+    im.wallActiveAtBuild[w] = model_.walls[w].active;
+  }
+  im.wallConstants.resize(entries);
+  for (std::size_t e = 0; e < entries; ++e) {
+    const std::uint32_t i = im.wallSlot[e];
+    const double mass = im.inverseMass[i] > 0.0 ? p.mass[i] : infinite;
+    im.wallConstants[e] = contactConstants(contactModel_,
+      wallProperties(contactModel_, p.radius[i], mass, d.section2D, d.slabThickness()));
+  }
+  im.wallTouching.assign(entries, 0);
+  im.wallSpring.assign(entries, Vec3::Zero());
+  im.wallRolling.assign(rolling ? entries : 0, Vec3::Zero());
+  im.wallForce.assign(entries, Vec3::Zero());
+  im.wallNormal.assign(entries, 0.0);
+  im.wallStiffness.assign(entries, 0.0);
+  im.wallElastic.assign(entries, 0.0);
+  if (!carryHistory) {
+    return;
+  }
+  // Carry the history over: both lists are sorted by (slot, wall). A contact touching now
+  // is in the new list (its gap is negative).
+  std::size_t e = 0;
+  for (std::size_t o = 0; o < oldSlot.size(); ++o) {
+    if (!oldTouching[o] && oldSpring[o].isZero(0.0) && !(rolling && !oldRolling[o].isZero(0.0))) {
+      continue;
+    }
+    while (e < entries && (im.wallSlot[e] < oldSlot[o] ||
+                           (im.wallSlot[e] == oldSlot[o] && im.wallIndex[e] < oldIndex[o]))) {
+      ++e;
+    }
+    if (e < entries && im.wallSlot[e] == oldSlot[o] && im.wallIndex[e] == oldIndex[o]) {
+      im.wallTouching[e] = oldTouching[o];
+      im.wallSpring[e] = oldSpring[o];
+      if (rolling) {
+        im.wallRolling[e] = oldRolling[o];
+      }
+    }
+  }
+}
+
+bool Simulation::wallsMoved() const
 {
   const Impl& im = *impl_;
-  const Particles& p = model_.particles;
   const double limit = 0.5 * im.skinDistance;
-  const double limit2 = limit * limit;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (separation(model_.domain, im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+  for (int w = 0; w < 6; ++w) {
+    const Wall& wall = model_.walls[w];
+    if (wall.active != im.wallActiveAtBuild[w] ||
+        (wall.active && !(std::abs(wall.position - im.wallPositionAtBuild[w]) <= limit))) {
       return true;
     }
   }
@@ -472,7 +613,7 @@ bool Simulation::neighboursStale() const
 // ---------------------------------------------------------------------------------------
 // Forces
 
-void Simulation::computeForces(bool incrementHistory)
+void Simulation::computeForces(bool incrementHistory, bool closingKick)
 {
   Impl& im = *impl_;
   Particles& p = model_.particles;
@@ -488,23 +629,24 @@ void Simulation::computeForces(bool incrementHistory)
   const double infinite = std::numeric_limits<double>::infinity();
   auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
 
+  const MinimumImage separationOf(d);
+
   // 1. Each pair once.
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long k = 0; k < pairs; ++k) {
     const std::uint32_t i = im.pairI[k];
     const std::uint32_t j = im.pairJ[k];
-    const Vec3 branch = separation(d, p.position[i], p.position[j]); // from i to j
+    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
     const double distance = branch.norm();
     const double overlap = p.radius[i] + p.radius[j] - distance;
     if (overlap <= 0.0 || distance == 0.0) {
-      if (im.pairMagnitude[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
+      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
           (rolling && !im.pairRolling[k].isZero(0.0))) {
         // The contact just ended: clear its force and history (once, not every step).
         im.pairForce[k].setZero();
         im.pairTorqueI[k].setZero();
         im.pairTorqueJ[k].setZero();
         im.pairNormal[k] = 0.0;
-        im.pairMagnitude[k] = 0.0;
         im.pairSpring[k].setZero();
         if (rolling) {
           im.pairRolling[k].setZero();
@@ -523,102 +665,118 @@ void Simulation::computeForces(bool incrementHistory)
     const Vec3 predictedVelocity = relativeVelocity +
       predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
     const double approachSpeed = predictedVelocity.dot(normal);
-    const PairProperties pair =
-      pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
-    const double fn = normalForce(cm, pair, overlap, approachSpeed);
+    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
+    const double fn = response.force;
     const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-    const Vec3 ft = tangentialForce(cm, pair, overlap, fn, normal, slip, im.pairSpring[k]);
+    const Vec3 ft =
+      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
     Vec3 torqueI = armI * normal.cross(ft);
     Vec3 torqueJ = armJ * normal.cross(ft);
     if (rolling) {
+      const PairProperties pair =
+        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
       const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
       const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
       torqueI += mr;
       torqueJ -= mr;
     }
     im.pairForce[k] = -fn * normal + ft;
-    im.pairMagnitude[k] = im.pairForce[k].norm();
     im.pairTorqueI[k] = torqueI;
     im.pairTorqueJ[k] = torqueJ;
     im.pairNormal[k] = fn;
+    if (fn != 0.0) {
+      // Two threads may mark the same particle: both write 1.
+#pragma omp atomic write
+      im.touching[i] = 1;
+#pragma omp atomic write
+      im.touching[j] = 1;
+    }
   }
 
-  // 2. Walls, per particle. During a press test the walls are frictionless (the usual
-  // choice for servo-controlled faces and platens: a face must be free to follow the
-  // specimen's lateral expansion without shear from it).
-  const long count = static_cast<long>(n);
+  // 2. Bonds, each once (state updated and failure checked only on a real step).
+  computeBondForces(incrementHistory);
+
+  // 3. Walls. During a press test the walls are frictionless (the usual choice for
+  // servo-controlled faces and platens: a face must be free to follow the specimen's
+  // lateral expansion without shear from it). Evaluated in the gather below, by the
+  // particle's own thread: wall entry e of particle i adds its force and torque.
   ContactModel wallModel = cm;
   if (model_.test.settings.mode != TestMode::Off) {
     wallModel.friction = 0.0;
     wallModel.rollingFriction = 0.0;
   }
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long i = 0; i < count; ++i) {
-    std::uint8_t mask = 0;
-    for (int w = 0; w < 6; ++w) {
-      const std::size_t slot = static_cast<std::size_t>(i) * 6 + w;
-      const Wall& wall = model_.walls[w];
-      const double side = wall.side == 0 ? 1.0 : -1.0;
-      const double distance = (p.position[i][wall.axis] - wall.position) * side;
-      const double overlap = wall.active ? p.radius[i] - distance : 0.0;
-      if (overlap <= 0.0) {
-        if (im.wallMask[i] & (1u << w)) {
-          // The contact just ended: clear its force and history once.
-          im.wallForce[slot].setZero();
-          im.wallTorque[slot].setZero();
-          im.wallNormal[slot] = 0.0;
-          im.wallStiffness[slot] = 0.0;
-          im.wallElastic[slot] = 0.0;
-          im.wallSpring[slot].setZero();
-          if (rolling) {
-            im.wallRolling[slot].setZero();
-          }
+  const bool wallRolling = wallModel.rollingFriction > 0.0;
+  auto wallContact = [&](std::size_t e, std::size_t i, Vec3& force, Vec3& torque) {
+    const Wall& wall = model_.walls[im.wallIndex[e]];
+    const double side = wall.side == 0 ? 1.0 : -1.0;
+    const double distance = (p.position[i][wall.axis] - wall.position) * side;
+    const double overlap = wall.active ? p.radius[i] - distance : 0.0;
+    if (overlap <= 0.0) {
+      if (im.wallTouching[e] || !im.wallSpring[e].isZero(0.0)) {
+        // The contact just ended: clear its force and history once.
+        im.wallTouching[e] = 0;
+        im.wallForce[e].setZero();
+        im.wallNormal[e] = 0.0;
+        im.wallStiffness[e] = 0.0;
+        im.wallElastic[e] = 0.0;
+        im.wallSpring[e].setZero();
+        if (rolling) {
+          im.wallRolling[e].setZero();
         }
-        continue;
       }
-      mask |= static_cast<std::uint8_t>(1u << w);
-      const Vec3 normal = -wall.normal(); // from the centre towards the wall
-      const double arm = p.radius[i] - overlap;
-      Vec3 wallVelocity = Vec3::Zero();
-      wallVelocity[wall.axis] = wall.velocity;
-      const Vec3 relativeVelocity =
-        p.velocity[i] - wallVelocity + p.angularVelocity[i].cross(arm * normal);
-      const double approachSpeed =
-        (relativeVelocity + predict * im.inverseMass[i] * p.force[i]).dot(normal);
-      const PairProperties pair = wallProperties(wallModel, p.radius[i], massOf(i), planar, slab);
-      const double fn = normalForce(wallModel, pair, overlap, approachSpeed);
-      const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-      const Vec3 ft = tangentialForce(wallModel, pair, overlap, fn, normal, slip, im.wallSpring[slot]);
-      Vec3 torque = arm * normal.cross(ft);
-      if (rolling) {
-        const Vec3 roll = inPlane(p.angularVelocity[i], normal) * dt;
-        torque += rollingTorque(wallModel, pair, overlap, fn, normal, roll, im.wallRolling[slot]);
-      }
-      im.wallForce[slot] = -fn * normal + ft;
-      im.wallTorque[slot] = torque;
-      im.wallNormal[slot] = fn;
-      im.wallStiffness[slot] = normalStiffness(wallModel, pair, overlap);
-      im.wallElastic[slot] = normalForce(wallModel, pair, overlap, 0.0); // no viscous part
+      return;
     }
-    im.wallMask[i] = mask;
-  }
+    const Vec3 normal = -wall.normal(); // from the centre towards the wall
+    const double arm = p.radius[i] - overlap;
+    Vec3 wallVelocity = Vec3::Zero();
+    wallVelocity[wall.axis] = wall.velocity;
+    const Vec3 relativeVelocity =
+      p.velocity[i] - wallVelocity + p.angularVelocity[i].cross(arm * normal);
+    const double approachSpeed =
+      (relativeVelocity + predict * im.inverseMass[i] * p.force[i]).dot(normal);
+    const NormalResponse response =
+      normalResponse(cm.law, im.wallConstants[e], overlap, approachSpeed);
+    const double fn = response.force;
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft = mindlinCoulombForce(response.tangentialStiffness, wallModel.friction, fn,
+                                        normal, slip, im.wallSpring[e]);
+    Vec3 contactTorque = arm * normal.cross(ft);
+    if (wallRolling) {
+      const PairProperties pair = wallProperties(wallModel, p.radius[i], massOf(i), planar, slab);
+      const Vec3 roll = inPlane(p.angularVelocity[i], normal) * dt;
+      contactTorque += rollingTorque(wallModel, pair, overlap, fn, normal, roll, im.wallRolling[e]);
+    } else if (rolling) {
+      im.wallRolling[e].setZero(); // rolling resistance off against frictionless walls
+    }
+    im.wallTouching[e] = 1;
+    im.wallForce[e] = -fn * normal + ft;
+    im.wallNormal[e] = fn;
+    im.wallStiffness[e] = response.stiffness;
+    im.wallElastic[e] = response.elasticForce; // no viscous part
+    force += im.wallForce[e];
+    torque += contactTorque;
+  };
 
-  // 2b. Bonds, each once (state updated and failure checked only on a real step).
-  computeBondForces(incrementHistory);
-
-  // 3. Gather per particle in a fixed order; Cundall damping on the unbalanced force.
+  // 4. Gather per particle in a fixed order (pairs by partner slot, then walls, then
+  // bonds); Cundall damping on the unbalanced force; on a real step, the closing half
+  // kick of the velocity Verlet step.
   const double alpha = model_.solver.settlingDamping;
   const Vec3 gravity = model_.gravity;
+  const double half = 0.5 * timestep_;
+  const long count = static_cast<long>(n);
+  const bool anyBonds = !im.bondI.empty();
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     Vec3 force = p.mass[i] * gravity;
     Vec3 torque = Vec3::Zero();
-    double contactMagnitude = 0.0;
-    for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
+    // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+    const std::size_t pairEnd = im.touching[i] ? im.adjacencyStart[i + 1] : im.adjacencyStart[i];
+    im.touching[i] = 0;
+    for (std::size_t e = im.adjacencyStart[i]; e < pairEnd; ++e) {
       const std::size_t k = im.adjacency[e] >> 1;
-      if (im.pairMagnitude[k] == 0.0) {
-        continue; // not touching: adds nothing (and skipping +0.0 changes no bit)
+      if (im.pairNormal[k] == 0.0) {
+        continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
       }
       if (im.adjacency[e] & 1u) {
         force -= im.pairForce[k];
@@ -627,35 +785,30 @@ void Simulation::computeForces(bool incrementHistory)
         force += im.pairForce[k];
         torque += im.pairTorqueI[k];
       }
-      contactMagnitude += im.pairMagnitude[k];
     }
-    for (int w = 0; w < 6; ++w) {
-      if (im.wallMask[i] & (1u << w)) {
-        force += im.wallForce[i * 6 + w];
-        torque += im.wallTorque[i * 6 + w];
-        contactMagnitude += im.wallForce[i * 6 + w].norm();
-      }
+    for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
+      wallContact(e, i, force, torque);
     }
-    for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
-      const std::size_t b = im.bondAdjacency[e] >> 1;
-      if (model_.bonds.broken(b)) {
-        continue;
+    if (anyBonds) {
+      for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+        const std::size_t b = im.bondAdjacency[e] >> 1;
+        if (model_.bonds.broken(b)) {
+          continue;
+        }
+        if (im.bondAdjacency[e] & 1u) {
+          force -= im.bondForce[b];
+          torque += im.bondTorqueJ[b];
+        } else {
+          force += im.bondForce[b];
+          torque += im.bondTorqueI[b];
+        }
       }
-      if (im.bondAdjacency[e] & 1u) {
-        force -= im.bondForce[b];
-        torque += im.bondTorqueJ[b];
-      } else {
-        force += im.bondForce[b];
-        torque += im.bondTorqueI[b];
-      }
-      contactMagnitude += im.bondForce[b].norm();
     }
     if (planar) {
       force.z() = 0.0;
       torque.x() = 0.0;
       torque.y() = 0.0;
     }
-    im.contactForceMagnitude[i] = contactMagnitude;
     im.undampedForce[i] = force;
     Vec3 damped = force;
     Vec3 dampedTorque = torque;
@@ -667,27 +820,38 @@ void Simulation::computeForces(bool incrementHistory)
     }
     p.force[i] = damped;
     p.torque[i] = dampedTorque;
-    im.unbalancedForce[i] = force.norm();
-  }
-
-  // 4. Wall reactions: serial sum in slot order (deterministic).
-  for (int w = 0; w < 6; ++w) {
-    Vec3 reaction = Vec3::Zero();
-    double stiffness = 0.0;
-    double elastic = 0.0;
-    std::int64_t contacts = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (im.wallMask[i] & (1u << w)) {
-        reaction -= im.wallForce[i * 6 + w];
-        stiffness += im.wallStiffness[i * 6 + w];
-        elastic += im.wallElastic[i * 6 + w];
-        ++contacts;
+    if (closingKick && im.inverseMass[i] != 0.0) {
+      p.velocity[i] += (half * im.inverseMass[i]) * damped;
+      p.angularVelocity[i] += (half * im.inverseInertia[i]) * dampedTorque;
+      if (planar) {
+        p.velocity[i].z() = 0.0;
+        p.angularVelocity[i].x() = 0.0;
+        p.angularVelocity[i].y() = 0.0;
       }
     }
-    model_.walls[w].elasticForce = elastic;
-    model_.walls[w].force = reaction;
-    model_.walls[w].contactStiffness = stiffness;
-    model_.walls[w].contacts = contacts;
+  }
+
+  // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
+  // wall's sum runs in slot order (deterministic).
+  std::array<Vec3, 6> reaction;
+  reaction.fill(Vec3::Zero());
+  std::array<double, 6> stiffness{};
+  std::array<double, 6> elastic{};
+  std::array<std::int64_t, 6> contacts{};
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
+    if (im.wallTouching[e]) {
+      const int w = im.wallIndex[e];
+      reaction[w] -= im.wallForce[e];
+      stiffness[w] += im.wallStiffness[e];
+      elastic[w] += im.wallElastic[e];
+      ++contacts[w];
+    }
+  }
+  for (int w = 0; w < 6; ++w) {
+    model_.walls[w].elasticForce = elastic[w];
+    model_.walls[w].force = reaction[w];
+    model_.walls[w].contactStiffness = stiffness[w];
+    model_.walls[w].contacts = contacts[w];
   }
 }
 
@@ -745,6 +909,9 @@ void Simulation::computeBondForces(bool incrementState)
   const double dt = timestep_;
   const double endTime = model_.clock.time + dt;
   const long count = static_cast<long>(b.size());
+  if (count == 0) {
+    return;
+  }
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long lk = 0; lk < count; ++lk) {
     const std::size_t k = static_cast<std::size_t>(lk);
@@ -857,9 +1024,12 @@ void Simulation::controlWalls()
   const bool platenMoving = t.stage == TestStage::Shear;
   const double platenSpeed = s.strainRate * t.initialLength[a]; // m/s
   const double platenVelocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
-  const std::array<double, 3> length = specimenLengths();
   Particles& p = model_.particles;
-  const double rmin = p.empty() ? 0.0 : *std::min_element(p.radius.begin(), p.radius.end());
+  const double rmin = impl_->smallestRadius;
+  // The specimen's size (a pass over the particles on an axis without walls): only for
+  // the servo.
+  std::array<double, 3> length{ { 0.0, 0.0, 0.0 } };
+  bool lengthKnown = false;
   // A servo wall never moves more than 0.2 % of the smallest radius per step: fast enough
   // to close a gap of a radius in a few hundred steps, slow enough that the viscous part
   // of the contact forces does not dominate what the servo measures.
@@ -867,6 +1037,10 @@ void Simulation::controlWalls()
   for (Wall& w : model_.walls) {
     const bool servo = w.active && (servoAll || (servoSides && w.axis != a));
     if (servo) {
+      if (!lengthKnown) {
+        length = specimenLengths();
+        lengthKnown = true;
+      }
       const int b = (w.axis + 1) % 3;
       const int c = (w.axis + 2) % 3;
       const double area = length[b] * length[c];
@@ -927,7 +1101,7 @@ TestMeasurements Simulation::measurements() const
   // Love-Weber: sigma = -(1/V) sum over particles and their contacts of (x_c - x_p) (x) f_c.
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   for (std::size_t k = 0; k < im.pairI.size(); ++k) {
-    if (im.pairMagnitude[k] == 0.0) {
+    if (im.pairNormal[k] == 0.0) {
       continue;
     }
     const std::size_t i = im.pairI[k];
@@ -942,15 +1116,14 @@ TestMeasurements Simulation::measurements() const
     const Vec3 branch = separation(d, p.position[im.bondI[k]], p.position[im.bondJ[k]]);
     sum += branch * im.bondForce[k].transpose();
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int w = 0; w < 6; ++w) {
-      if (im.wallMask[i] & (1u << w)) {
-        const Wall& wall = model_.walls[w];
-        const double side = wall.side == 0 ? 1.0 : -1.0;
-        const double distance = (p.position[i][wall.axis] - wall.position) * side;
-        const Vec3 arm = -wall.normal() * distance; // centre to contact point
-        sum += arm * im.wallForce[i * 6 + w].transpose();
-      }
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) { // in (slot, wall) order
+    if (im.wallTouching[e]) {
+      const std::size_t i = im.wallSlot[e];
+      const Wall& wall = model_.walls[im.wallIndex[e]];
+      const double side = wall.side == 0 ? 1.0 : -1.0;
+      const double distance = (p.position[i][wall.axis] - wall.position) * side;
+      const Vec3 arm = -wall.normal() * distance; // centre to contact point
+      sum += arm * im.wallForce[e].transpose();
     }
   }
   const Eigen::Matrix3d sigma = -(sum + sum.transpose()) / (2.0 * volume);
@@ -1087,9 +1260,16 @@ void Simulation::step()
   const double half = 0.5 * dt;
   const bool planar = d.section2D;
   const long count = static_cast<long>(p.size());
+  const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+  const double limit2 = limit * limit;
+  const MinimumImage separationOf(d);
+  const std::array<bool, 3> periodic = d.periodic;
+  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
 
-  // Half kick with the forces of the last step, then drift.
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  // Half kick with the forces of the last step, then drift; note whether any particle
+  // has moved half the skin since the neighbour list was built.
+  bool stale = false;
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     // A fixed particle is kinematic: forces do not change its velocity (inverse mass
@@ -1104,8 +1284,8 @@ void Simulation::step()
     const Vec3 move = dt * p.velocity[i];
     p.position[i] += move;
     p.displacement[i] += move;
-    for (int k = 0; k < 3; ++k) {
-      if (d.periodic[k]) {
+    for (int k = 0; anyPeriodic && k < 3; ++k) {
+      if (periodic[k]) {
         const double lo = d.origin[k];
         const double length = d.size[k];
         if (p.position[i][k] < lo) {
@@ -1115,32 +1295,22 @@ void Simulation::step()
         }
       }
     }
+    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+      stale = true;
+    }
   }
   controlWalls();
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
   }
 
-  if (neighboursStale()) {
+  if (stale) {
     rebuildNeighbours(false);
+  } else if (wallsMoved()) {
+    rebuildWallContacts(true);
   }
-  computeForces(true);
-
-  // Second half kick with the new forces.
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    if (im.inverseMass[i] == 0.0) {
-      continue;
-    }
-    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
-    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
-    if (planar) {
-      p.velocity[i].z() = 0.0;
-      p.angularVelocity[i].x() = 0.0;
-      p.angularVelocity[i].y() = 0.0;
-    }
-  }
+  // New forces, then the second half kick (in the same pass).
+  computeForces(true, true);
   model_.clock.step += 1;
   model_.clock.time += dt;
   sampleLoadTest();
@@ -1279,8 +1449,8 @@ Diagnostics Simulation::diagnostics() const
     displacement2 += p.displacement[i].squaredNorm();
     if (im.inverseMass[i] > 0.0) {
       // A fixed (kinematic) particle's net force is a support reaction, not imbalance.
-      net += im.unbalancedForce[i];
-      contact += im.contactForceMagnitude[i];
+      net += im.undampedForce[i].norm();
+      contact += contactForceMagnitude(i);
     }
   }
   if (!p.empty()) {
@@ -1290,8 +1460,8 @@ Diagnostics Simulation::diagnostics() const
   for (double fn : im.pairNormal) {
     out.contacts += fn > 0.0 ? 1 : 0;
   }
-  for (double fn : im.wallNormal) {
-    out.contacts += fn > 0.0 ? 1 : 0;
+  for (std::size_t e = 0; e < im.wallNormal.size(); ++e) {
+    out.contacts += im.wallTouching[e] && im.wallNormal[e] > 0.0 ? 1 : 0;
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
@@ -1303,6 +1473,31 @@ Diagnostics Simulation::diagnostics() const
     }
   }
   return out;
+}
+
+double Simulation::contactForceMagnitude(std::size_t i) const
+{
+  // Sum of the magnitudes of the forces on particle i, in the gather's order.
+  const Impl& im = *impl_;
+  double magnitude = 0.0;
+  for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
+    const std::size_t k = im.adjacency[e] >> 1;
+    if (im.pairNormal[k] != 0.0) {
+      magnitude += im.pairForce[k].norm();
+    }
+  }
+  for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
+    if (im.wallTouching[e]) {
+      magnitude += im.wallForce[e].norm();
+    }
+  }
+  for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+    const std::size_t b = im.bondAdjacency[e] >> 1;
+    if (!model_.bonds.broken(b)) {
+      magnitude += im.bondForce[b].norm();
+    }
+  }
+  return magnitude;
 }
 
 double Simulation::totalEnergy() const
@@ -1336,17 +1531,17 @@ double Simulation::totalEnergy() const
       p.radius[j], im.inverseMass[j] > 0 ? p.mass[j] : inf, d.section2D, d.slabThickness());
     energy += elastic(pair, overlap, im.pairSpring[k]);
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int w = 0; w < 6; ++w) {
-      const Wall& wall = model_.walls[w];
-      if (!wall.active) {
-        continue;
-      }
-      const double side = wall.side == 0 ? 1.0 : -1.0;
-      const double overlap = p.radius[i] - (p.position[i][wall.axis] - wall.position) * side;
-      const PairProperties pair = wallProperties(cm, p.radius[i], p.mass[i], d.section2D, d.slabThickness());
-      energy += elastic(pair, overlap, im.wallSpring[i * 6 + w]);
+  // Only the particles in the wall list can touch a wall.
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
+    const std::size_t i = im.wallSlot[e];
+    const Wall& wall = model_.walls[im.wallIndex[e]];
+    if (!wall.active) {
+      continue;
     }
+    const double side = wall.side == 0 ? 1.0 : -1.0;
+    const double overlap = p.radius[i] - (p.position[i][wall.axis] - wall.position) * side;
+    const PairProperties pair = wallProperties(cm, p.radius[i], p.mass[i], d.section2D, d.slabThickness());
+    energy += elastic(pair, overlap, im.wallSpring[e]);
   }
   return energy;
 }
@@ -1376,15 +1571,13 @@ void Simulation::exportContacts()
       entries.push_back({ idJ, idI, -s, -r });
     }
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int w = 0; w < 6; ++w) {
-      const Vec3& s = im.wallSpring[i * 6 + w];
-      const Vec3 r = rolling ? im.wallRolling[i * 6 + w] : Vec3::Zero();
-      if (s.isZero(0.0) && r.isZero(0.0)) {
-        continue;
-      }
-      entries.push_back({ p.id[i], wallPartnerId(w), s, r });
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
+    const Vec3& s = im.wallSpring[e];
+    const Vec3 r = rolling ? im.wallRolling[e] : Vec3::Zero();
+    if (s.isZero(0.0) && r.isZero(0.0)) {
+      continue;
     }
+    entries.push_back({ p.id[im.wallSlot[e]], wallPartnerId(im.wallIndex[e]), s, r });
   }
   std::sort(entries.begin(), entries.end(),
     [](const Entry& x, const Entry& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });

@@ -10,6 +10,8 @@
 #include "dem/ContactLawKind.h"
 #include "dem/Model.h"
 
+#include <cmath>
+
 namespace dem {
 
 /// Effective properties of one contact (PHYSICS.md section 1). A rigid wall has
@@ -82,9 +84,98 @@ Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double
 /// Removes the component of `v` along the unit normal `n` (projection onto the plane).
 inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
 
+// ---------------------------------------------------------------------------------------
+// The laws with their per-contact constants precomputed (the time-stepping hot path).
+//
+// E*, G*, R* and m* depend only on the material and on the two partners' radii and masses,
+// so the solver computes the factors below once per pair, when it builds its neighbour
+// list, instead of once per pair and step. The functions give the same physics as
+// normalForce / normalStiffness / tangentialStiffness / tangentialForce above (they differ
+// from them only in the rounding of the last bits).
+
+/// Constants of one contact (PHYSICS.md section 1).
+struct ContactConstants {
+  /// Hertz: K = 4/3 E* sqrt(R*), N/m^(3/2) (F = K delta^(3/2)); linear: kn, N/m.
+  double normalStiffness = 0.0;
+  /// Hertz: c sqrt(m* K), N s/m^(5/4) (F_d = that x delta^(1/4) d(delta)/dt);
+  /// linear: 2 zeta sqrt(m* kn), N s/m. 0 when undamped (e = 1, or two kinematic bodies).
+  double normalDamping = 0.0;
+  /// Hertz (Mindlin): 8 G* sqrt(R*), N/m^(3/2) (kt = that x sqrt(delta)); linear: kt, N/m.
+  double tangentialStiffness = 0.0;
+};
+
+/// The constants of a contact with these effective properties.
+ContactConstants contactConstants(const ContactModel& model, const PairProperties& pair);
+
+/// The state of the normal spring of one contact at overlap delta > 0 (m).
+struct NormalResponse {
+  double elasticForce;        ///< N, Hertz K delta^(3/2) or linear kn delta
+  double force;               ///< N, elastic + viscous, cut off at zero (no tension)
+  double stiffness;           ///< N/m, dF_elastic/d(delta): Hertz 3/2 K sqrt(delta), linear kn
+  double tangentialStiffness; ///< N/m, Mindlin 8 G* sqrt(R* delta), linear kt
+};
+
+/// Hertz-Mindlin normal response with Tsuji-type damping: F = K delta^(3/2) +
+/// c sqrt(m* K) delta^(1/4) d(delta)/dt, cut off at zero; one square root of delta serves
+/// the force, the damping and both stiffnesses. `approachSpeed` (m/s) > 0 approaching.
+inline NormalResponse hertzMindlinResponse(const ContactConstants& c, double overlap,
+                                           double approachSpeed)
+{
+  const double root = std::sqrt(overlap);          // m^(1/2)
+  const double elastic = c.normalStiffness * overlap * root;
+  const double viscous = c.normalDamping * std::sqrt(root) * approachSpeed;
+  const double force = elastic + viscous;
+  return { elastic, force > 0.0 ? force : 0.0, 1.5 * c.normalStiffness * root,
+           c.tangentialStiffness * root };
+}
+
+/// Linear spring-dashpot normal response: F = kn delta + 2 zeta sqrt(m* kn) d(delta)/dt,
+/// cut off at zero; constant stiffnesses.
+inline NormalResponse linearResponse(const ContactConstants& c, double overlap, double approachSpeed)
+{
+  const double elastic = c.normalStiffness * overlap;
+  const double force = elastic + c.normalDamping * approachSpeed;
+  return { elastic, force > 0.0 ? force : 0.0, c.normalStiffness, c.tangentialStiffness };
+}
+
+/// The normal response of the model's law (overlap > 0).
+inline NormalResponse normalResponse(ContactLaw law, const ContactConstants& c, double overlap,
+                                     double approachSpeed)
+{
+  return law == ContactLaw::HertzMindlin ? hertzMindlinResponse(c, overlap, approachSpeed)
+                                         : linearResponse(c, overlap, approachSpeed);
+}
+
 /// Rotates a stored in-plane vector (spring, shear force, bending moment) into the plane
 /// normal to `n`, keeping its length: history follows the rotating contact plane.
-Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n);
+inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
+{
+  const double length2 = v.squaredNorm();
+  if (length2 == 0.0) {
+    return Vec3::Zero();
+  }
+  const Vec3 projected = inPlane(v, n);
+  const double projected2 = projected.squaredNorm();
+  return projected2 > 0.0 ? Vec3(projected * std::sqrt(length2 / projected2)) : Vec3(Vec3::Zero());
+}
+
+/// Incremental tangential spring (Mindlin / Coulomb) with a known stiffness kt (N/m) and
+/// friction coefficient mu: the stored spring (m) is rotated into the current plane,
+/// incremented by `slipIncrement` (m, in the plane) and capped so that |Ft| <= mu Fn.
+/// Returns the tangential force on particle A, N: Ft = -kt * spring.
+inline Vec3 mindlinCoulombForce(double kt, double friction, double normalForceMagnitude,
+                                const Vec3& n, const Vec3& slipIncrement, Vec3& spring)
+{
+  spring = rotateIntoPlane(spring, n) + slipIncrement;
+  const double limit = friction * normalForceMagnitude; // N, Coulomb: |Ft| <= mu Fn
+  const double trial2 = kt * kt * spring.squaredNorm();  // N^2
+  if (trial2 > limit * limit) {
+    // Gross sliding: keep the spring at the length that carries exactly mu Fn.
+    const double trial = std::sqrt(trial2);
+    spring *= (kt > 0.0 && trial > 0.0) ? limit / trial : 0.0;
+  }
+  return -kt * spring;
+}
 
 /// Restitution delivered by one head-on collision of the given law with damping
 /// coefficient `c` and the no-tension cut-off (dimensionless, speed independent for both

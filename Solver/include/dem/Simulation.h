@@ -1,8 +1,10 @@
 // RockDEM engine: the time-stepping solver on the CPU.
 //
 // One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> Verlet
-// neighbour list update when any particle has moved half the skin -> pair forces (each
-// pair once) -> wall forces -> per-particle gather in a fixed order -> Cundall local
+// neighbour list update when any particle has moved half the skin (the list of particles
+// near each wall with it, or alone when a wall has moved half the skin) -> pair forces
+// (each pair once) -> bond forces -> per-particle gather in a fixed order (pairs by
+// partner slot, then its wall contacts, evaluated there, then bonds) -> Cundall local
 // damping -> half kick. Velocity Verlet; velocity-dependent forces use the half-step
 // velocity. Serial below SolverSettings::parallelThreshold particles, OpenMP above; the
 // result never depends on the number of threads (no floating-point atomics, fixed
@@ -90,13 +92,15 @@ public:
 
 private:
   void rebuildNeighbours(bool importModelHistory);
+  void rebuildWallContacts(bool carryHistory);
+  bool wallsMoved() const;
   void buildBondLists();
   void controlWalls();
   void sampleLoadTest();
   std::array<double, 3> specimenLengths() const;
   void computeBondForces(bool incrementState);
-  bool neighboursStale() const;
-  void computeForces(bool incrementHistory);
+  void computeForces(bool incrementHistory, bool closingKick);
+  double contactForceMagnitude(std::size_t particle) const;
   void step();
   void checkStability(const char* when) const;
   double availableEnergy() const;
