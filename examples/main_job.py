@@ -242,6 +242,14 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     dfn = DEMFracturesToDFN(Input=press)
     dfn.UpdatePipeline(t_dfn)
     print("DFN at t = %.4g s: %s" % (t_dfn, rockdem.read_only(dfn, "LastMessage")), flush=True)
+    if rockdem.read_only(dfn, "DiscsEmitted") == 0:
+        # The damage zones at the two rigid platens join into a few large non-planar
+        # clusters at the default distance (two mean diameters); one mean diameter keeps the
+        # fractures apart (Documentation/Fractures.md, Workflow.md).
+        dfn.ClusterDistance = 0.5 * rockdem.read_only(dfn, "UsedClusterDistance")
+        dfn.UpdatePipeline(t_dfn)
+        print("DFN with Cluster Distance %.4g m (one mean diameter): %s"
+              % (dfn.ClusterDistance, rockdem.read_only(dfn, "LastMessage")), flush=True)
     dfn_csv = os.path.join(args.output, "dfn.csv")
     SaveData(dfn_csv, proxy=OutputPort(dfn, 1))
     for proxy in list(GetSources().values()):
