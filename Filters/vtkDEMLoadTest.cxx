@@ -561,9 +561,11 @@ int vtkDEMLoadTest::RequestData(
     return 0;
   }
 
-  if (in.Frame == this->NumberOfFrames)
+  if (in.Frame == this->NumberOfFrames || in.Model.test.stage == dem::TestStage::Done)
   {
-    this->WriteCheckpoint(); // the end of the run
+    // The end of the run: the last frame, or a test that has finished (a script that
+    // stops at Stage done, as rockdem.run_test does, never asks for the last frame).
+    this->WriteCheckpoint();
   }
   rockdem::ModelToMultiBlock(in.Model, output);
   const dem::Diagnostics d = in.Simulation->diagnostics();

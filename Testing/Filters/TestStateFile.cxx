@@ -253,3 +253,37 @@ TEST(StateFileFilters, CheckpointThenReaderAndLoadTestContinueExactly)
   resumed->UpdateTimeStep(0.0);
   EXPECT_EQ(ModelOf(resumed).test.history.size(), 0u) << "a new test starts with no history";
 }
+
+// A test that finishes before the last frame (Stage done) is checkpointed then: a script
+// that stops at done (rockdem.run_test) still gets the end of its run saved.
+TEST(StateFileFilters, AFinishedTestIsCheckpointedBeforeTheLastFrame)
+{
+  TempDir dir;
+  vtkNew<vtkDEMPackSource> pack;
+  MakePack(pack);
+  vtkNew<vtkDEMLoadTest> test;
+  test->SetInputConnection(pack->GetOutputPort(0));
+  test->SetMode(vtkDEMLoadTest::MODE_COMPRESSION);
+  test->SetStrainRate(2.0);
+  test->SetMaxStrain(0.002);
+  test->SetSampleInterval(50);
+  test->SetGravity(0.0, 0.0, 0.0);
+  test->SetFrameInterval(0.0005);
+  test->SetNumberOfFrames(20);
+  const std::string checkpoint = dir.File("done.rdem");
+  test->SetCheckpointFile(checkpoint.c_str());
+  int frame = 1;
+  for (; frame < 20; ++frame)
+  {
+    test->UpdateTimeStep(frame * 0.0005);
+    if (ModelOf(test).test.stage == dem::TestStage::Done)
+    {
+      break;
+    }
+    EXPECT_EQ(dir.Files(), std::vector<std::string>{}) << "no checkpoint while the test runs";
+  }
+  ASSERT_LT(frame, 20) << "Max Strain is reached before the last frame";
+  const dem::Model done = ModelOf(test);
+  EXPECT_EQ(dem::statetest::firstDifference(dem::readState(checkpoint), done), "")
+    << "the frame at which the test finished is saved";
+}
