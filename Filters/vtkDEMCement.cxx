@@ -150,15 +150,7 @@ int vtkDEMCement::RequestData(
   output->ShallowCopy(in.Output);
   // The result does not depend on time: stamp the time asked for, so that the pipeline
   // sees the request satisfied (the shallow copy carried no upstream time).
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-  {
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
-      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
-  }
-  else
-  {
-    output->GetInformation()->Remove(vtkDataObject::DATA_TIME_STEP());
-  }
+  rockdem::StampRequestedTime(outInfo, output);
   return 1;
 }
 

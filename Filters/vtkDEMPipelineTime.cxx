@@ -1,5 +1,6 @@
 #include "vtkDEMPipelineTime.h"
 
+#include <vtkDataObject.h>
 #include <vtkInformation.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -19,6 +20,19 @@ void RequestLastUpstreamTime(vtkInformation* inInfo)
   else
   {
     inInfo->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+}
+
+void StampRequestedTime(vtkInformation* outInfo, vtkDataObject* output)
+{
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+  }
+  else
+  {
+    output->GetInformation()->Remove(vtkDataObject::DATA_TIME_STEP());
   }
 }
 }

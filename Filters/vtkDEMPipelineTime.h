@@ -5,6 +5,7 @@
 #ifndef vtkDEMPipelineTime_h
 #define vtkDEMPipelineTime_h
 
+class vtkDataObject;
 class vtkInformation;
 
 namespace rockdem
@@ -14,6 +15,12 @@ namespace rockdem
 /// Changing this stage's time then never re-runs the stage before it (DESIGN.md, time
 /// contract). Call from RequestUpdateExtent with the input's information.
 void RequestLastUpstreamTime(vtkInformation* inputInfo);
+
+/// Stamps the output of a stage whose result does not depend on time with the time it
+/// was asked for (DATA_TIME_STEP = the output's UPDATE_TIME_STEP), or removes the stamp
+/// when no time was asked for, so that the pipeline sees the request satisfied (a shallow
+/// copy of the input carries no upstream time). Call at the end of RequestData.
+void StampRequestedTime(vtkInformation* outputInfo, vtkDataObject* output);
 }
 
 #endif

@@ -141,15 +141,7 @@ int vtkDEMSeedFractures::RequestData(
     output->Initialize();
     return 0;
   }
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-  {
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
-      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
-  }
-  else
-  {
-    output->GetInformation()->Remove(vtkDataObject::DATA_TIME_STEP());
-  }
+  rockdem::StampRequestedTime(outInfo, output);
   return 1;
 }
 

@@ -268,12 +268,7 @@ BondSegments bondSegments(const Model& model)
         std::to_string(ia == slot.end() ? bonds.idA[k] : bonds.idB[k]) + ", which is not in the model.");
     }
     const Vec3& a = p.position[ia->second];
-    Vec3 branch = p.position[ib->second] - a;
-    for (int c = 0; c < 3; ++c) {
-      if (d.periodic[c]) {
-        branch[c] -= d.size[c] * std::nearbyint(branch[c] / d.size[c]);
-      }
-    }
+    const Vec3 branch = minimumImage(d, a, p.position[ib->second]);
     out.a.push_back(a);
     out.b.push_back(a + branch);
     out.mid.push_back(a + 0.5 * branch);

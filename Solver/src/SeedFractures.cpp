@@ -95,20 +95,6 @@ bool crosses(const Vec3& p, const Vec3& q, const Prepared& poly)
   return inside;
 }
 
-Vec3 minimumImage(const Domain& d, const Vec3& a, const Vec3& b)
-{
-  Vec3 s = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (d.periodic[k]) {
-      s[k] -= d.size[k] * std::nearbyint(s[k] / d.size[k]);
-    }
-  }
-  if (d.section2D) {
-    s.z() = 0.0;
-  }
-  return s;
-}
-
 } // namespace
 
 void validate(const std::vector<FracturePolygon>& polygons)

@@ -10,6 +10,7 @@
 #include "dem/Model.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "Specimens.h"
 
 #include <cstring>
 #include <stdexcept>
@@ -39,44 +40,12 @@ inline Model settlingPack()
   return m;
 }
 
-/// A cube specimen without gravity, as under the press.
-inline Model specimen(int n, double side, double rmin, double rmax, std::uint64_t seed)
-{
-  Model m;
-  m.domain.size = Vec3(side, side, side);
-  m.material.youngsModulus = 1e8;
-  m.gravity.setZero();
-  PackParameters p;
-  p.initialElements = n;
-  p.minimumSize = rmin;
-  p.maximumSize = rmax;
-  p.randomSeed = seed;
-  buildPack(m, p);
-  growElements(m);
-  return m;
-}
-
 /// Cemented specimen under unconfined compression, stopped once bonds have broken.
 inline Model cementedMidCompression()
 {
-  Model m = specimen(400, 0.016, 0.0008, 0.0012, 3);
-  {
-    LoadTestSettings iso;
-    iso.mode = TestMode::Isotropic;
-    iso.confiningStress = 2e4;
-    startLoadTest(m, iso);
-    Simulation sim(m);
-    for (int k = 0; k < 100 && m.test.stage != TestStage::Done; ++k) {
-      sim.advance(200);
-    }
-  }
-  CementParameters c;
-  c.bondModulus = 2e7;
-  c.tensileStrength = 2e5;
-  c.cohesion = 4e5;
-  c.strengthScatter = 0.2;
-  c.gapTolerance = 0.1;
-  cement(m, c);
+  Model m = testing::specimen(400, 0.016, 0.0008, 0.0012, 3);
+  testing::consolidate(m, 2e4);
+  cement(m, testing::testCement());
   LoadTestSettings s;
   s.mode = TestMode::Compression;
   s.strainRate = 1.0;
@@ -96,7 +65,7 @@ inline Model cementedMidCompression()
 /// Triaxial test past consolidation, in the middle of shear (between two samples).
 inline Model triaxialMidShear()
 {
-  Model m = specimen(500, 0.02, 0.001, 0.0015, 1);
+  Model m = testing::specimen(500, 0.02, 0.001, 0.0015, 1);
   LoadTestSettings s;
   s.mode = TestMode::Triaxial;
   s.confiningStress = 1e5;

@@ -16,6 +16,7 @@
 #include "dem/Random.h"
 #include "dem/SeedFractures.h"
 #include "dem/Simulation.h"
+#include "Specimens.h"
 
 #include <gtest/gtest.h>
 
@@ -674,34 +675,10 @@ TEST(SeedFractures, SeededDiscExportsAsInheritedSet)
 // separate there, and most of the new breaks lie within two diameters of it.
 TEST(SeedFractures, SeededSpecimenInTensionFailsAlongTheSeededPlane)
 {
-  Model m;
-  m.domain.size = Vec3(0.016, 0.016, 0.016);
-  m.material.youngsModulus = 1e8;
-  m.gravity.setZero();
+  Model m = dem::testing::specimen(400, 0.016, 0.0008, 0.0012, 3);
   m.solver.timestepSafety = 0.3;
-  PackParameters p;
-  p.initialElements = 400;
-  p.minimumSize = 0.0008;
-  p.maximumSize = 0.0012;
-  p.randomSeed = 3;
-  buildPack(m, p);
-  growElements(m);
-  {
-    LoadTestSettings iso;
-    iso.mode = TestMode::Isotropic;
-    iso.confiningStress = 2e4;
-    startLoadTest(m, iso);
-    Simulation sim(m);
-    for (int k = 0; k < 100 && m.test.stage != TestStage::Done; ++k) {
-      sim.advance(200);
-    }
-  }
-  CementParameters cp;
-  cp.bondModulus = 2e7;
-  cp.tensileStrength = 2e5;
-  cp.cohesion = 4e5;
-  cp.strengthScatter = 0.2;
-  cp.gapTolerance = 0.1;
+  dem::testing::consolidate(m, 2e4);
+  const CementParameters cp = dem::testing::testCement();
   cement(m, cp);
   // The seeded level: 40 % up the specimen (not its middle), crack from the X- side.
   double lo = 1e9, hi = -1e9, xlo = 1e9, xhi = -1e9;

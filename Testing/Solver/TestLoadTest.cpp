@@ -7,6 +7,7 @@
 #include "dem/LoadTest.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "Specimens.h"
 
 #include <gtest/gtest.h>
 
@@ -14,24 +15,9 @@
 
 using namespace dem;
 
-namespace {
+using namespace dem::testing;
 
-/// A grown pack in a cube without gravity (as a laboratory specimen under the press).
-Model specimen(int n, double side, double rmin, double rmax, std::uint64_t seed = 1)
-{
-  Model m;
-  m.domain.size = Vec3(side, side, side);
-  m.material.youngsModulus = 1e8;
-  m.gravity.setZero();
-  PackParameters p;
-  p.initialElements = n;
-  p.minimumSize = rmin;
-  p.maximumSize = rmax;
-  p.randomSeed = seed;
-  buildPack(m, p);
-  growElements(m);
-  return m;
-}
+namespace {
 
 void runUntilDone(Model& m, Simulation& sim, int maxBatches, int batch = 500)
 {
@@ -106,22 +92,8 @@ TEST(Press, TriaxialConsolidatesThenSidesHoldThroughShear)
 TEST(Press, UnconfinedCompressionOfCementedSpecimenFails)
 {
   Model m = specimen(400, 0.016, 0.0008, 0.0012, 3);
-  {
-    // Close the pack a little so the cement has contacts to bond.
-    LoadTestSettings iso;
-    iso.mode = TestMode::Isotropic;
-    iso.confiningStress = 2e4;
-    startLoadTest(m, iso);
-    Simulation sim(m);
-    runUntilDone(m, sim, 100, 200);
-  }
-  CementParameters c;
-  c.bondModulus = 2e7;
-  c.tensileStrength = 2e5;
-  c.cohesion = 4e5;
-  c.strengthScatter = 0.2;
-  c.gapTolerance = 0.1;
-  ASSERT_GT(cement(m, c).bonds, 500u);
+  consolidate(m, 2e4); // close the pack a little so the cement has contacts to bond
+  ASSERT_GT(cement(m, testCement()).bonds, 500u);
   LoadTestSettings s;
   s.mode = TestMode::Compression;
   s.strainRate = 1.0;

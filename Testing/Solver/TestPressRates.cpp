@@ -12,6 +12,7 @@
 #include "dem/LoadTest.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "Specimens.h"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,7 @@
 #include <map>
 
 using namespace dem;
+using namespace dem::testing;
 
 namespace {
 
@@ -44,36 +46,11 @@ const Specimen& cementedSpecimen()
   static const Specimen s = [] {
     Specimen out;
     Model& m = out.model;
-    m.domain.size = Vec3(0.016, 0.016, 0.016);
-    m.material.youngsModulus = 1e8;
-    m.gravity.setZero();
+    m = specimen(400, 0.016, 0.0008, 0.0012, 3);
     m.solver.timestepSafety = 0.3;
-    PackParameters p;
-    p.initialElements = 400;
-    p.minimumSize = 0.0008;
-    p.maximumSize = 0.0012;
-    p.randomSeed = 3;
-    buildPack(m, p);
-    growElements(m);
-    LoadTestSettings iso;
-    iso.mode = TestMode::Isotropic;
-    iso.confiningStress = 2e4;
-    startLoadTest(m, iso);
-    {
-      Simulation sim(m);
-      for (int k = 0; k < 100 && m.test.stage != TestStage::Done; ++k) {
-        sim.advance(200);
-      }
-      EXPECT_EQ(m.test.stage, TestStage::Done) << "consolidation settles";
-      out.suggestedRate = sim.measurements().suggestedStrainRate;
-    }
-    CementParameters c;
-    c.bondModulus = 2e7;
-    c.tensileStrength = 2e5;
-    c.cohesion = 4e5;
-    c.strengthScatter = 0.2;
-    c.gapTolerance = 0.1;
-    const std::size_t bonds = cement(m, c).bonds;
+    out.suggestedRate = consolidate(m, 2e4);
+    EXPECT_EQ(m.test.stage, TestStage::Done) << "consolidation settles";
+    const std::size_t bonds = cement(m, testCement()).bonds;
     EXPECT_GT(bonds, 500u);
     LoadTestSettings off;
     off.mode = TestMode::Off;

@@ -96,7 +96,7 @@ std::string memoryError(const std::vector<unsigned char>& image)
 /// enough to have contacts, bonds (some broken) and test history.
 Model everyFieldModel()
 {
-  Model m = statetest::specimen(150, 0.012, 0.0008, 0.0012, 5);
+  Model m = dem::testing::specimen(150, 0.012, 0.0008, 0.0012, 5);
   m.domain.origin = Vec3(0.001, -0.002, 0.003);
   m.domain.periodic = { { false, true, false } };
   m.material.poissonsRatio = 0.21;
@@ -305,7 +305,7 @@ TEST(StateFile, EmptyModelRoundTrips)
 
 TEST(StateFile, TheFileIsPlainHDF5AfterTheHeader)
 {
-  const Model m = statetest::specimen(50, 0.01, 0.001, 0.0015, 2);
+  const Model m = dem::testing::specimen(50, 0.01, 0.001, 0.0015, 2);
   const std::vector<unsigned char> image = writeStateToMemory(m);
   EXPECT_EQ(std::memcmp(image.data(), "RockDEM state", 14), 0);
   EXPECT_EQ(std::memcmp(image.data() + 512, "\x89HDF\r\n\x1a\n", 8), 0) << "HDF5 superblock after the user block";
@@ -339,7 +339,7 @@ TEST(StateFile, TriaxialMidShearResumesExactly)
 TEST(StateFile, TruncatedFilesAreRejected)
 {
   TempDir dir;
-  const std::vector<unsigned char> image = writeStateToMemory(statetest::specimen(80, 0.01, 0.001, 0.0015, 4));
+  const std::vector<unsigned char> image = writeStateToMemory(dem::testing::specimen(80, 0.01, 0.001, 0.0015, 4));
   const std::string path = dir.file("cut.rdem");
   for (std::size_t at : { std::size_t(0), std::size_t(10), std::size_t(100), std::size_t(511), std::size_t(512),
                           std::size_t(600), image.size() / 2, image.size() - 1 }) {
@@ -356,7 +356,7 @@ TEST(StateFile, TruncatedFilesAreRejected)
 
 TEST(StateFile, DamagedBytesAreRejected)
 {
-  const std::vector<unsigned char> image = writeStateToMemory(statetest::specimen(80, 0.01, 0.001, 0.0015, 4));
+  const std::vector<unsigned char> image = writeStateToMemory(dem::testing::specimen(80, 0.01, 0.001, 0.0015, 4));
   struct Case {
     std::size_t offset;
     const char* expected;
@@ -386,7 +386,7 @@ TEST(StateFile, UnknownVersionIsRejectedNamingTheSupportedOnes)
 
 TEST(StateFile, InconsistentArraySizesAreRejected)
 {
-  const Model m = statetest::specimen(60, 0.01, 0.001, 0.0015, 6);
+  const Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
   const std::size_t n = m.particles.size();
   const std::vector<unsigned char> image = writeStateToMemory(m);
   // One velocity too few: the size check names the dataset, its size and the expected one.
@@ -481,7 +481,7 @@ TEST(StateFile, AFailedWriteLeavesTheOldFileAndNoTemporary)
 {
   TempDir dir;
   const std::string path = dir.file("keep.rdem");
-  const Model first = statetest::specimen(40, 0.01, 0.001, 0.0015, 7);
+  const Model first = dem::testing::specimen(40, 0.01, 0.001, 0.0015, 7);
   writeState(first, path);
   const std::vector<unsigned char> before = readBytes(path);
   Model second = first;
@@ -546,7 +546,7 @@ TEST(StateFile, FilesThatCrashHDF5AreStoppedByTheChecksum)
 // compared with cmp; the round-trip test above relies on it too).
 TEST(StateFile, TheSameModelGivesTheSameBytes)
 {
-  const Model m = statetest::specimen(40, 0.01, 0.001, 0.0015, 8);
+  const Model m = dem::testing::specimen(40, 0.01, 0.001, 0.0015, 8);
   const std::vector<unsigned char> first = writeStateToMemory(m);
   ::usleep(1100 * 1000); // past a second boundary: HDF5's object times would differ
   EXPECT_EQ(writeStateToMemory(m), first);

@@ -113,6 +113,11 @@ struct Model {
 /// section a disc through the slab, pi r^2 t (t = domain.slabThickness()).
 double particleVolume(const Domain& domain, double radius);
 
+/// Separation b - a (m) by the minimum image: across a periodic axis the nearest copy of
+/// b; in a 2D section z is 0. Valid while the separation is below half the box on every
+/// periodic axis.
+Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b);
+
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);
 
