@@ -46,13 +46,20 @@ vtkSmartPointer<vtkDoubleArray> VectorArray(const char* name, const std::vector<
   return a;
 }
 
-vtkSmartPointer<vtkDoubleArray> ScalarArray(const char* name, const std::vector<double>& v)
+/// A one-component array of type ArrayT named `name` holding a copy of v.
+template <typename ArrayT, typename T>
+vtkSmartPointer<ArrayT> CopiedArray(const char* name, const std::vector<T>& v)
 {
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  auto a = vtkSmartPointer<ArrayT>::New();
   a->SetName(name);
   a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
   std::copy(v.begin(), v.end(), a->GetPointer(0));
   return a;
+}
+
+vtkSmartPointer<vtkDoubleArray> ScalarArray(const char* name, const std::vector<double>& v)
+{
+  return CopiedArray<vtkDoubleArray>(name, v);
 }
 
 void AddField(vtkFieldData* fd, const char* name, std::initializer_list<double> values)
@@ -246,11 +253,7 @@ void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
   output->SetVerts(verts);
 
   vtkPointData* pd = output->GetPointData();
-  vtkNew<vtkTypeInt64Array> ids;
-  ids->SetName("Id");
-  ids->SetNumberOfTuples(n);
-  std::copy(p.id.begin(), p.id.end(), ids->GetPointer(0));
-  pd->AddArray(ids);
+  pd->AddArray(CopiedArray<vtkTypeInt64Array>("Id", p.id));
   pd->SetGlobalIds(nullptr);
 
   pd->AddArray(ScalarArray("Radius", p.radius));
@@ -263,11 +266,7 @@ void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
   pd->AddArray(ScalarArray("Mass", p.mass));
   pd->AddArray(ScalarArray("Inertia", p.inertia));
 
-  vtkNew<vtkTypeUInt32Array> flags;
-  flags->SetName("Flags");
-  flags->SetNumberOfTuples(n);
-  std::copy(p.flags.begin(), p.flags.end(), flags->GetPointer(0));
-  pd->AddArray(flags);
+  pd->AddArray(CopiedArray<vtkTypeUInt32Array>("Flags", p.flags));
 
   // Derived, for colouring and thresholding (not read back).
   vtkNew<vtkUnsignedCharArray> fixed;
@@ -360,18 +359,9 @@ void ContactsToPolyData(const dem::Model& model, vtkPolyData* output)
 {
   output->Initialize();
   const dem::ContactHistory& h = model.contacts;
-  const auto n = static_cast<vtkIdType>(h.size());
-  vtkNew<vtkTypeInt64Array> idA;
-  idA->SetName("IdA");
-  idA->SetNumberOfTuples(n);
-  std::copy(h.idA.begin(), h.idA.end(), idA->GetPointer(0));
-  vtkNew<vtkTypeInt64Array> idB;
-  idB->SetName("IdB");
-  idB->SetNumberOfTuples(n);
-  std::copy(h.idB.begin(), h.idB.end(), idB->GetPointer(0));
   vtkFieldData* fd = output->GetFieldData();
-  fd->AddArray(idA);
-  fd->AddArray(idB);
+  fd->AddArray(CopiedArray<vtkTypeInt64Array>("IdA", h.idA));
+  fd->AddArray(CopiedArray<vtkTypeInt64Array>("IdB", h.idB));
   fd->AddArray(VectorArray("ShearSpring", h.shearSpring));
   fd->AddArray(VectorArray("RollingSpring", h.rollingSpring));
 }
@@ -403,18 +393,9 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
     const dem::Vec3 xa = ia != slotOf.end() ? p.position[ia->second]
       : ib != slotOf.end()                  ? p.position[ib->second]
                                             : d.origin;
-    dem::Vec3 branch = dem::Vec3::Zero();
-    if (ia != slotOf.end() && ib != slotOf.end())
-    {
-      branch = p.position[ib->second] - xa;
-      for (int k = 0; k < 3; ++k)
-      {
-        if (d.periodic[k] && d.size[k] > 0.0)
-        {
-          branch[k] -= d.size[k] * std::round(branch[k] / d.size[k]);
-        }
-      }
-    }
+    const dem::Vec3 branch = ia != slotOf.end() && ib != slotOf.end()
+      ? dem::minimumImage(d, xa, p.position[ib->second])
+      : dem::Vec3::Zero();
     const dem::Vec3 xb = xa + branch;
     xyz->SetTuple3(2 * c, xa.x(), xa.y(), xa.z());
     xyz->SetTuple3(2 * c + 1, xb.x(), xb.y(), xb.z());
@@ -449,16 +430,8 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
   output->GetPointData()->AddArray(zeroRadius);
 
   vtkCellData* cd = output->GetCellData();
-  vtkNew<vtkTypeInt64Array> idA;
-  idA->SetName("IdA");
-  idA->SetNumberOfTuples(n);
-  std::copy(b.idA.begin(), b.idA.end(), idA->GetPointer(0));
-  cd->AddArray(idA);
-  vtkNew<vtkTypeInt64Array> idB;
-  idB->SetName("IdB");
-  idB->SetNumberOfTuples(n);
-  std::copy(b.idB.begin(), b.idB.end(), idB->GetPointer(0));
-  cd->AddArray(idB);
+  cd->AddArray(CopiedArray<vtkTypeInt64Array>("IdA", b.idA));
+  cd->AddArray(CopiedArray<vtkTypeInt64Array>("IdB", b.idB));
   cd->AddArray(ScalarArray("BondRadius", b.radius));
   cd->AddArray(ScalarArray("NormalStiffness", b.normalStiffness));
   cd->AddArray(ScalarArray("ShearStiffness", b.shearStiffness));
@@ -469,11 +442,7 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
   cd->AddArray(VectorArray("ShearForce", b.shearForce));
   cd->AddArray(ScalarArray("TwistingMoment", b.twistingMoment));
   cd->AddArray(VectorArray("BendingMoment", b.bendingMoment));
-  vtkNew<vtkUnsignedCharArray> mode;
-  mode->SetName("FailureMode");
-  mode->SetNumberOfTuples(n);
-  std::copy(b.failure.begin(), b.failure.end(), mode->GetPointer(0));
-  cd->AddArray(mode);
+  cd->AddArray(CopiedArray<vtkUnsignedCharArray>("FailureMode", b.failure));
   cd->AddArray(ScalarArray("FailureTime", b.failureTime));
   cd->AddArray(VectorArray("FailurePosition", b.failurePosition));
   cd->AddArray(VectorArray("FailureNormal", b.failureNormal));

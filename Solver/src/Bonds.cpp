@@ -48,6 +48,19 @@ void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn,
   failureNormal.push_back(Vec3::Zero());
 }
 
+void Bonds::markBroken(std::size_t k, BondFailure how, double time, const Vec3& position,
+                       const Vec3& normal)
+{
+  failure[k] = static_cast<std::uint8_t>(how);
+  failureTime[k] = time;
+  failurePosition[k] = position;
+  failureNormal[k] = normal;
+  normalForce[k] = 0.0;
+  shearForce[k].setZero();
+  twistingMoment[k] = 0.0;
+  bendingMoment[k].setZero();
+}
+
 BondCounts countBonds(const Bonds& bonds)
 {
   BondCounts counts;

@@ -80,20 +80,6 @@ double particleVolume(const Domain& domain, double radius)
   return 4.0 / 3.0 * kPi * r * r * r;        // sphere
 }
 
-Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b)
-{
-  Vec3 s = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (domain.periodic[k]) {
-      s[k] -= domain.size[k] * std::nearbyint(s[k] / domain.size[k]);
-    }
-  }
-  if (domain.section2D) {
-    s.z() = 0.0;
-  }
-  return s;
-}
-
 void updateMassProperties(Model& model)
 {
   Particles& p = model.particles;

@@ -199,14 +199,7 @@ SeedReport seedFractures(Model& model, const std::vector<FracturePolygon>& polyg
     const double distance = branch.norm();
     const Vec3 normal = distance > 0.0 ? Vec3(branch / distance) : Vec3(Vec3::UnitZ());
     const double armI = distance * p.radius[i] / (p.radius[i] + p.radius[j]);
-    b.failure[k] = static_cast<std::uint8_t>(BondFailure::Inherited);
-    b.failureTime[k] = model.clock.time;
-    b.failurePosition[k] = a + armI * normal;
-    b.failureNormal[k] = normal;
-    b.normalForce[k] = 0.0;
-    b.shearForce[k].setZero();
-    b.twistingMoment[k] = 0.0;
-    b.bendingMoment[k].setZero();
+    b.markBroken(k, BondFailure::Inherited, model.clock.time, a + armI * normal, normal);
     ++report.seeded;
   }
   return report;

@@ -230,42 +230,26 @@ struct Simulation::Impl {
 };
 
 namespace {
-/// Minimum-image separation b - a (m); z = 0 in a 2D section. The domain's flags are
-/// copied once, for the hot loops (a box without periodic axes takes the plain difference).
+/// dem::minimumImage for the hot loops: a box without periodic axes (and not a 2D section)
+/// takes the plain difference, decided once.
 class MinimumImage {
 public:
   explicit MinimumImage(const Domain& d)
-    : size_(d.size)
-    , periodic_(d.periodic)
-    , planar_(d.section2D)
+    : domain_(d)
     , plain_(!d.periodic[0] && !d.periodic[1] && !d.periodic[2] && !d.section2D)
   {
   }
   Vec3 operator()(const Vec3& a, const Vec3& b) const
   {
-    Vec3 s = b - a;
-    if (plain_) {
-      return s;
-    }
-    for (int k = 0; k < 3; ++k) {
-      if (periodic_[k]) {
-        s[k] -= size_[k] * std::nearbyint(s[k] / size_[k]);
-      }
-    }
-    if (planar_) {
-      s.z() = 0.0;
-    }
-    return s;
+    return plain_ ? Vec3(b - a) : minimumImage(domain_, a, b);
   }
 
 private:
-  Vec3 size_;
-  std::array<bool, 3> periodic_;
-  bool planar_;
+  const Domain& domain_;
   bool plain_;
 };
 
-Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return MinimumImage(d)(a, b); }
+Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
 } // namespace
 
 Simulation::Simulation(Model& model)
@@ -950,14 +934,7 @@ void Simulation::computeBondForces(bool incrementState)
         bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
       if (failure != BondFailure::Intact) {
         // Broken for good: record how, when, where and how it was oriented.
-        b.failure[k] = static_cast<std::uint8_t>(failure);
-        b.failureTime[k] = endTime;
-        b.failurePosition[k] = p.position[i] + armI * normal;
-        b.failureNormal[k] = normal;
-        b.normalForce[k] = 0.0;
-        b.shearForce[k].setZero();
-        b.twistingMoment[k] = 0.0;
-        b.bendingMoment[k].setZero();
+        b.markBroken(k, failure, endTime, p.position[i] + armI * normal, normal);
         im.bondForce[k].setZero();
         im.bondTorqueI[k].setZero();
         im.bondTorqueJ[k].setZero();
@@ -1329,6 +1306,8 @@ void Simulation::advance(std::int64_t steps)
   const Particles savedParticles = model_.particles;
   const std::vector<Wall> savedWalls = model_.walls;
   const ContactHistory savedContacts = model_.contacts;
+  const Bonds savedBonds = model_.bonds;
+  const LoadTestState savedTest = model_.test;
   const Clock savedClock = model_.clock;
   try {
     for (std::int64_t s = 0; s < steps; ++s) {
@@ -1342,6 +1321,8 @@ void Simulation::advance(std::int64_t steps)
     model_.particles = savedParticles;
     model_.walls = savedWalls;
     model_.contacts = savedContacts;
+    model_.bonds = savedBonds;
+    model_.test = savedTest;
     model_.clock = savedClock;
     impl_->broken = true;
     std::ostringstream msg;

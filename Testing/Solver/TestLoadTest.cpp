@@ -207,3 +207,34 @@ TEST(Press, BadSettingsAreNamed)
   s.servoAlpha = 1.5;
   EXPECT_THROW(startLoadTest(m, s), InputError);
 }
+
+// A run that goes unstable keeps its last good state (DESIGN.md, Stability) in full: the
+// bonds broken and the history rows written by the failed batch are taken back with the
+// particles, so the model is the one from before the batch.
+TEST(Press, UnstableBatchRestoresBondsAndTestState)
+{
+  Model m = specimen(150, 0.012, 0.0008, 0.0012, 2);
+  ASSERT_GT(cement(m, testCement()).bonds, 50u);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.strainRate = 1.0;
+  s.sampleInterval = 10;
+  startLoadTest(m, s);
+  {
+    Simulation warmUp(m);
+    warmUp.advance(200);
+  }
+  ASSERT_FALSE(m.test.history.empty());
+  m.solver.allowUnsafeTimestep = true; // test-only switch: force the blow-up
+  m.solver.settlingDamping = 0.0;
+  m.solver.requestedTimestep = 5.0 * Simulation(m).criticalTimestep();
+  Simulation sim(m);
+  const Model before = m;
+  EXPECT_THROW(sim.advance(100000), InstabilityError);
+  EXPECT_EQ(m.clock.step, before.clock.step);
+  EXPECT_EQ(m.particles.position, before.particles.position);
+  EXPECT_EQ(m.bonds.failure, before.bonds.failure) << "bonds broken by the failed batch are restored";
+  EXPECT_EQ(m.bonds.normalForce, before.bonds.normalForce);
+  EXPECT_EQ(m.test.history, before.test.history) << "no history rows from the failed batch";
+  EXPECT_EQ(m.test.peakStress, before.test.peakStress);
+}

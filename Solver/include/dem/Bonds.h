@@ -60,6 +60,10 @@ struct Bonds {
   /// Appends an intact bond with zero force; strengths and stiffness as given.
   void append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
               double sigmaC, double c, double phi);
+  /// Breaks bond k for good: records how, when (s), where (m, the contact point on the
+  /// line of centres) and its orientation (unit normal from A to B), and zeroes its force
+  /// and moments.
+  void markBroken(std::size_t k, BondFailure how, double time, const Vec3& position, const Vec3& normal);
 };
 
 /// Bond counts for the read-only values.

@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -116,7 +117,19 @@ double particleVolume(const Domain& domain, double radius);
 /// Separation b - a (m) by the minimum image: across a periodic axis the nearest copy of
 /// b; in a 2D section z is 0. Valid while the separation is below half the box on every
 /// periodic axis.
-Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b);
+inline Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b)
+{
+  Vec3 s = b - a;
+  for (int k = 0; k < 3; ++k) {
+    if (domain.periodic[k]) {
+      s[k] -= domain.size[k] * std::nearbyint(s[k] / domain.size[k]);
+    }
+  }
+  if (domain.section2D) {
+    s.z() = 0.0;
+  }
+  return s;
+}
 
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);
