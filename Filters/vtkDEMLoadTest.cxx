@@ -145,26 +145,6 @@ void WriteTableCSV(vtkTable* table, const std::string& path)
 }
 }
 
-namespace
-{
-/// Whether a stage with these press settings continues the input model's test rather
-/// than starting a new one: the test is in progress (consolidate or shear) with exactly
-/// these settings, or both are Off (an Off run keeps its walls where they are).
-bool ContinuesInputTest(const dem::LoadTestState& test, const dem::LoadTestSettings& press)
-{
-  const dem::LoadTestSettings& s = test.settings;
-  if (press.mode == dem::TestMode::Off)
-  {
-    return s.mode == dem::TestMode::Off;
-  }
-  const bool same = s.mode == press.mode && s.axis == press.axis &&
-    s.confiningStress == press.confiningStress && s.strainRate == press.strainRate &&
-    s.maxStrain == press.maxStrain && s.servoAlpha == press.servoAlpha &&
-    s.sampleInterval == press.sampleInterval && s.settleTolerance == press.settleTolerance;
-  return same && (test.stage == dem::TestStage::Consolidate || test.stage == dem::TestStage::Shear);
-}
-}
-
 struct vtkDEMLoadTest::vtkInternals
 {
   bool Valid = false;
@@ -443,7 +423,7 @@ int vtkDEMLoadTest::RequestData(
       // Start the press (Mode Off restores the box) before the simulation sees the model,
       // unless the input's test is this one in progress (a reopened state file): then it
       // continues exactly where it stopped.
-      if (this->ContinueTest && ContinuesInputTest(in.Model.test, press))
+      if (this->ContinueTest && dem::continuesTest(in.Model.test, press))
       {
         in.Model.test.settings = press;
       }

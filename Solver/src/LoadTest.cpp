@@ -67,6 +67,22 @@ void validate(const LoadTestSettings& s)
   }
 }
 
+bool operator==(const LoadTestSettings& a, const LoadTestSettings& b)
+{
+  return a.mode == b.mode && a.axis == b.axis && a.confiningStress == b.confiningStress &&
+    a.strainRate == b.strainRate && a.maxStrain == b.maxStrain && a.servoAlpha == b.servoAlpha &&
+    a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance;
+}
+
+bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings)
+{
+  if (settings.mode == TestMode::Off) {
+    return test.settings.mode == TestMode::Off;
+  }
+  return test.settings == settings &&
+    (test.stage == TestStage::Consolidate || test.stage == TestStage::Shear);
+}
+
 double centreSpread(const Particles& particles, int axis)
 {
   const std::size_t n = particles.size();

@@ -238,3 +238,28 @@ TEST(Press, UnstableBatchRestoresBondsAndTestState)
   EXPECT_EQ(m.test.history, before.test.history) << "no history rows from the failed batch";
   EXPECT_EQ(m.test.peakStress, before.test.peakStress);
 }
+
+// A stage continues the input's test only when that test is in progress with exactly the
+// stage's settings (a reopened state file), or when both are Off; anything else starts
+// a new test (DESIGN.md, time contract; Documentation/StateFile.md).
+TEST(Press, ContinuesOnlyATestInProgressWithTheSameSettings)
+{
+  LoadTestState t;
+  t.settings.mode = TestMode::Triaxial;
+  t.settings.confiningStress = 1e5;
+  t.stage = TestStage::Shear;
+  LoadTestSettings same = t.settings;
+  EXPECT_TRUE(continuesTest(t, same));
+  t.stage = TestStage::Consolidate;
+  EXPECT_TRUE(continuesTest(t, same));
+  LoadTestSettings faster = same;
+  faster.strainRate *= 2.0;
+  EXPECT_FALSE(continuesTest(t, faster)) << "another strain rate is another test";
+  t.stage = TestStage::Done;
+  EXPECT_FALSE(continuesTest(t, same)) << "a finished test is not continued";
+  LoadTestSettings off;
+  EXPECT_FALSE(continuesTest(t, off)) << "Mode Off after a press restores the box";
+  LoadTestState idle;
+  EXPECT_TRUE(continuesTest(idle, off)) << "Off after Off keeps the walls";
+  EXPECT_FALSE(continuesTest(idle, same)) << "an idle model starts the test";
+}

@@ -39,6 +39,10 @@ struct LoadTestSettings {
   double settleTolerance = 0.01; ///< servo faces within this relative error count as settled
 };
 
+/// Field-by-field equality (two stages with equal settings run the same test).
+bool operator==(const LoadTestSettings& a, const LoadTestSettings& b);
+inline bool operator!=(const LoadTestSettings& a, const LoadTestSettings& b) { return !(a == b); }
+
 /// Names of the history columns, in order (units in the names).
 const std::vector<std::string>& historyColumns();
 constexpr std::size_t HistoryColumnCount = 27;
@@ -89,5 +93,11 @@ void validate(const LoadTestSettings& settings);
 /// next to each platen to it) and the first stage. Mode Off restores the six walls at
 /// the current box and ends any test.
 void startLoadTest(Model& model, const LoadTestSettings& settings);
+
+/// Whether a stage asked to run `settings` on a model whose test state is `test` continues
+/// that test instead of starting a new one (startLoadTest): the test is in progress
+/// (consolidate or shear) with exactly these settings, or both are Off (an Off run keeps
+/// its walls where they are). A reopened state file continues this way.
+bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings);
 
 } // namespace dem
