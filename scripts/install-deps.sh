@@ -4,16 +4,16 @@ set -euo pipefail
 PKGS=(
   build-essential cmake ninja-build pkg-config git
   paraview paraview-dev python3-paraview
-  qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
+  qtbase5-dev qttools5-dev libqt5svg5-dev libqt5opengl5-dev qtxmlpatterns5-dev-tools
   libopenmpi-dev
   libdouble-conversion-dev liblz4-dev libutfcpp-dev libexpat1-dev liblzma-dev zlib1g-dev
   libfreetype-dev libglew-dev libgl2ps-dev libjpeg-dev libpng-dev libtiff-dev libxml2-dev
   libx11-dev libgl-dev libtheora-dev libnetcdf-dev libjsoncpp-dev libpugixml-dev libprotobuf-dev
   libeigen3-dev libhdf5-dev
-  libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
-  libgtest-dev googletest
+  libvulkan-dev glslc mesa-vulkan-drivers
+  libgtest-dev
   clang libclang-rt-14-dev
-  xvfb python3-numpy python3-matplotlib
+  xvfb xauth python3-numpy python3-matplotlib
 )
 missing=()
 for p in "${PKGS[@]}"; do
