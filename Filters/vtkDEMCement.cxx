@@ -41,6 +41,7 @@ vtkDEMCement::vtkDEMCement()
   , TensileStrength(10.0e6)
   , Cohesion(20.0e6)
   , FrictionAngle(30.0)
+  , MomentContribution(1.0)
   , StrengthScatter(0.0)
   , RandomSeed(1)
   , NumberOfBonds(0)
@@ -112,6 +113,7 @@ int vtkDEMCement::RequestData(
       params.tensileStrength = this->TensileStrength;
       params.cohesion = this->Cohesion;
       params.frictionAngle = this->FrictionAngle;
+      params.momentContribution = this->MomentContribution;
       params.strengthScatter = this->StrengthScatter;
       params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
       dem::validate(params);
@@ -171,6 +173,7 @@ void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TensileStrength: " << this->TensileStrength << " Pa\n";
   os << indent << "Cohesion: " << this->Cohesion << " Pa\n";
   os << indent << "FrictionAngle: " << this->FrictionAngle << " degrees\n";
+  os << indent << "MomentContribution: " << this->MomentContribution << "\n";
   os << indent << "StrengthScatter: " << this->StrengthScatter << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "Bonds: " << this->NumberOfBonds << "\n";

@@ -87,6 +87,14 @@ public:
   ///@}
 
   ///@{
+  /// Moment contribution factor beta, [0, 1]: the share of the bond's bending and twisting
+  /// moments in its peripheral stresses (1 = Potyondy & Cundall 2004; 0 = moments are
+  /// carried but never break a bond).
+  vtkSetMacro(MomentContribution, double);
+  vtkGetMacro(MomentContribution, double);
+  ///@}
+
+  ///@{
   /// Coefficient of variation of the bond strengths, [0, 1]; 0 = every bond identical.
   vtkSetMacro(StrengthScatter, double);
   vtkGetMacro(StrengthScatter, double);
@@ -128,6 +136,7 @@ protected:
   double TensileStrength;
   double Cohesion;
   double FrictionAngle;
+  double MomentContribution;
   double StrengthScatter;
   int RandomSeed;
 

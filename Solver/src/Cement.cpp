@@ -82,6 +82,7 @@ void validate(const CementParameters& p)
                      " degrees is out of range: valid range is [0, 90) degrees.");
   }
   requireInRange("Strength Scatter", p.strengthScatter, 0.0, 1.0);
+  requireInRange("Moment Contribution", p.momentContribution, 0.0, 1.0);
 }
 
 std::string CementReport::summary() const
@@ -156,7 +157,8 @@ CementReport cement(Model& model, const CementParameters& params)
     const double ks = kn * params.bondStiffnessRatio;
     model.bonds.append(c.a, c.b, params.bondRadiusMultiplier * std::min(ri, rj), kn, ks,
       params.tensileStrength * strengthFactor(params.randomSeed, c.a, c.b, 0, params.strengthScatter),
-      params.cohesion * strengthFactor(params.randomSeed, c.a, c.b, 1, params.strengthScatter), phi);
+      params.cohesion * strengthFactor(params.randomSeed, c.a, c.b, 1, params.strengthScatter), phi,
+      params.momentContribution);
   }
   report.bonds = model.bonds.size();
   report.particles = p.size();

@@ -394,6 +394,16 @@ TEST(BondRange, BondRangeAndGapToleranceAreBounded)
   p.gapTolerance = 100.0;
   EXPECT_THROW(cement(m, p), InputError);
   EXPECT_EQ(m.bonds.size(), 0u);
+  for (double bad : { -0.1, 1.1, nan }) {
+    CementParameters p;
+    p.momentContribution = bad;
+    try {
+      validate(p);
+      ADD_FAILURE() << "Moment Contribution = " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Moment Contribution"), std::string::npos) << e.what();
+    }
+  }
   for (double good : { 1.0, 1.5, 2.0 }) {
     CementParameters q;
     q.bondRange = good;

@@ -19,6 +19,7 @@ struct CementParameters {
   double tensileStrength = 10.0e6;   ///< Pa, mean sigma_c, > 0
   double cohesion = 20.0e6;          ///< Pa, mean c, > 0
   double frictionAngle = 30.0;       ///< degrees, phi in [0, 90)
+  double momentContribution = 1.0;   ///< beta in [0, 1]: share of the moments in the peripheral stresses
   double strengthScatter = 0.0;      ///< coefficient of variation of the strengths, [0, 1]
   std::uint64_t randomSeed = 1;      ///< seed of the strength draw
 };
