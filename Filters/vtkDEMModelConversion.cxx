@@ -739,6 +739,12 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
   {
     Missing("the model (no input data)");
   }
+  if (input->GetNumberOfBlocks() == 0 && input->GetFieldData()->GetNumberOfArrays() == 0)
+  {
+    // What a RockDEM stage outputs after an error (or a source with nothing to build).
+    throw dem::InputError("The input model is empty: the stage before this one produced no "
+                          "model (see its message in Output Messages or its Last Message).");
+  }
   vtkPolyData* particles = NamedBlock(input, ParticlesBlockName);
   if (!particles)
   {

@@ -2,6 +2,7 @@
 
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
+#include "dem/Overlaps.h"
 #include "dem/SizeClassGrids.h"
 
 #include <algorithm>
@@ -56,6 +57,52 @@ int availableThreads()
 #else
   return 1;
 #endif
+}
+
+/// Processors this process may run on.
+int processorCount()
+{
+#ifdef _OPENMP
+  return omp_get_num_procs();
+#else
+  return 1;
+#endif
+}
+
+/// Threads beyond a few per processor only add overhead, and thousands can exhaust the
+/// machine (a failed thread start aborts the process): Threads is bounded by 4 x the
+/// processors (at least 4, so the thread-independence checks run anywhere).
+void validateThreadsForThisMachine(int threads)
+{
+  const int most = std::max(4, 4 * processorCount());
+  if (threads > most) {
+    throw InputError("Threads = " + std::to_string(threads) + " is out of range on this machine: valid range is 0 " +
+                     "(all " + std::to_string(processorCount()) + " processors) to " + std::to_string(most) +
+                     " (4 per processor). Results never depend on the number of threads.");
+  }
+}
+
+/// Work done by gravity (J) along the periodic axes on the particles that move under forces,
+/// measured from their accumulated displacements (which do not wrap). On a periodic axis the
+/// height is unbounded, so this work is the energy source of a falling periodic column.
+double periodicGravityWork(const Model& model)
+{
+  const Domain& d = model.domain;
+  Vec3 g = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    g[k] = d.periodic[k] ? model.gravity[k] : 0.0;
+  }
+  if (g.isZero(0.0)) {
+    return 0.0;
+  }
+  const Particles& p = model.particles;
+  double work = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & (FlagFixed | FlagAttachedLow | FlagAttachedHigh)) == 0) {
+      work += p.mass[i] * g.dot(p.displacement[i]);
+    }
+  }
+  return work;
 }
 
 } // namespace
@@ -259,6 +306,8 @@ Simulation::Simulation(Model& model)
   validate(model.domain);
   validate(model.material);
   validate(model.solver);
+  validateThreadsForThisMachine(model.solver.threads);
+  requireDistinctCentres(model.domain, model.particles);
   const SolverSettings& s = model.solver;
   contactModel_ = makeContactModel(model.material, s.contactLaw);
   if (model.walls.size() != 6) {
@@ -282,6 +331,7 @@ Simulation::Simulation(Model& model)
   if (!std::isfinite(timestep_)) {
     timestep_ = 0.0; // no particles: nothing to step
   }
+  validatePlatenSpeed(model, timestep_);
   model.clock.timestep = timestep_;
 
   Impl& im = *impl_;
@@ -332,14 +382,30 @@ Simulation::Simulation(Model& model)
     impl_->wallRolling = saved.wallRolling;
   }
   initialAvailableEnergy_ = availableEnergy();
+  gravityWorkAtStart_ = periodicGravityWork(model);
 }
 
 Simulation::~Simulation() = default;
 
 std::string Simulation::path() const
 {
-  return impl_->parallel ? "CPU OpenMP (" + std::to_string(impl_->threads) + " threads)"
-                         : std::string("CPU serial");
+  // Which path runs, and why when it is not what Threads asked for.
+  const SolverSettings& s = model_.solver;
+  const int processors = processorCount();
+  if (impl_->parallel) {
+    std::string text = "CPU OpenMP (" + std::to_string(impl_->threads) + " threads)";
+    if (impl_->threads > processors) {
+      text += ", more threads than the " + std::to_string(processors) + " processors";
+    }
+    return text;
+  }
+  const auto n = static_cast<std::int64_t>(model_.particles.size());
+  if (n < s.parallelThreshold) {
+    return "CPU serial (" + std::to_string(n) + " particles, below the parallel threshold of " +
+      std::to_string(s.parallelThreshold) + (s.threads == 1 ? ")" : "; threads are used from there on)");
+  }
+  return s.threads == 1 ? std::string("CPU serial (Threads = 1)")
+                        : "CPU serial (OpenMP offers 1 thread on " + std::to_string(processors) + " processors)";
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1402,12 +1468,17 @@ void Simulation::checkStability(const char* when) const
   // Moving walls and platens do work on the specimen: during a test the energy check
   // has a source, so only non-finite values and escapes are checked then.
   const bool testRunning = model_.test.settings.mode != TestMode::Off;
-  const double limit = 2.0 * initialAvailableEnergy_ + 1e-300;
+  // Gravity along a periodic axis is a source: a falling column has no floor to measure a
+  // potential energy from, so the work gravity has done since the start counts instead.
+  const double gravityWork = std::max(0.0, periodicGravityWork(model_) - gravityWorkAtStart_);
+  const double limit = 2.0 * (initialAvailableEnergy_ + gravityWork) + 1e-300;
   if (!testRunning && kinetic > limit) {
     throw InstabilityError(std::string("The run went unstable ") + when + ": kinetic energy " +
       formatValue(kinetic) + " J exceeds twice the energy available at the start (" +
-      formatValue(initialAvailableEnergy_) + " J) with no source of energy (timestep " +
-      formatValue(timestep_) + " s, critical " + formatValue(critical_) + " s).");
+      formatValue(initialAvailableEnergy_) + " J" +
+      (gravityWork > 0.0 ? " plus " + formatValue(gravityWork) + " J of work by gravity along periodic axes" : "") +
+      ") with no source of energy (timestep " + formatValue(timestep_) + " s, critical " + formatValue(critical_) +
+      " s).");
   }
 }
 

@@ -74,7 +74,8 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial" or "CPU OpenMP (N threads)".
+  /// Which path runs: "CPU serial (why)" or "CPU OpenMP (N threads)" (saying so when N
+  /// is more than the processors).
   std::string path() const;
   const ContactModel& contactModel() const { return contactModel_; }
 
@@ -113,6 +114,7 @@ private:
   double timestep_ = 0.0;
   std::string timestepMessage_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
+  double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
 };
 
 } // namespace dem
