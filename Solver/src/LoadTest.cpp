@@ -128,6 +128,20 @@ void validatePlatenSpeed(const Model& model, double timestep)
   }
 }
 
+namespace {
+/// Removes the grains beyond the walls the new stage stands up (grains that escaped while
+/// those walls were down, in an unconfined test): a grain beyond an active wall could never
+/// come back, and the run would stop at once on it (Documentation/Press.md, "Escaped grains").
+RemovedParticles removeEscapedGrains(Model& model)
+{
+  std::vector<std::uint8_t> escaped(model.particles.size(), 0);
+  for (std::size_t i = 0; i < escaped.size(); ++i) {
+    escaped[i] = beyondActiveWalls(model.walls, model.particles.position[i]) ? 1 : 0;
+  }
+  return removeParticles(model, escaped);
+}
+} // namespace
+
 RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
 {
   validate(settings);
@@ -140,14 +154,6 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
         "first (DEM Cement), or use Mode = Compression, Triaxial or Isotropic.");
     }
   }
-  // Grains that left the box while it had no side walls (an unconfined test) are removed:
-  // the new stage's walls stand on the box faces, and a grain beyond them could never
-  // come back (Documentation/Press.md, "Escaped grains").
-  std::vector<std::uint8_t> escaped(model.particles.size(), 0);
-  for (std::size_t i = 0; i < escaped.size(); ++i) {
-    escaped[i] = outsideBox(model.domain, model.particles.position[i]) ? 1 : 0;
-  }
-  const RemovedParticles removed = removeParticles(model, escaped);
   LoadTestState& t = model.test;
   Particles& p = model.particles;
   // End any previous test: detach particles, restore the box.
@@ -164,7 +170,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
     // Off restores the box; a model that never ran gets its walls here.
     resetWalls(model);
     if (settings.mode == TestMode::Off) {
-      return removed;
+      return removeEscapedGrains(model);
     }
   }
   // Otherwise the walls stay where the previous stage left them (a consolidated
@@ -208,6 +214,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
     model.walls[2 * a].position = lo;
     model.walls[2 * a + 1].position = hi;
   }
+  const RemovedParticles removed = removeEscapedGrains(model);
   for (int k = 0; k < 3; ++k) {
     const Wall& low = model.walls[2 * k];
     const Wall& high = model.walls[2 * k + 1];

@@ -173,17 +173,6 @@ RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& 
   return removed;
 }
 
-bool outsideBox(const Domain& domain, const Vec3& centre)
-{
-  for (int k = 0; k < domain.dimension(); ++k) {
-    if (!domain.periodic[k] &&
-        (centre[k] < domain.origin[k] || centre[k] > domain.origin[k] + domain.size[k])) {
-      return true;
-    }
-  }
-  return false;
-}
-
 // ---------------------------------------------------------------------------------------
 // Mass properties
 

@@ -1441,15 +1441,8 @@ void Simulation::checkStability(const char* when) const
   std::size_t escaped = 0;
   std::size_t first = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      const bool walled = model_.walls[2 * k].active;
-      if (walled && (p.position[i][k] < model_.walls[2 * k].position ||
-                     p.position[i][k] > model_.walls[2 * k + 1].position)) {
-        if (escaped++ == 0) {
-          first = i;
-        }
-        break;
-      }
+    if (beyondActiveWalls(model_.walls, p.position[i]) && escaped++ == 0) {
+      first = i;
     }
   }
   if (escaped > 0) {
@@ -1516,13 +1509,7 @@ Diagnostics Simulation::diagnostics() const
     out.contacts += im.wallTouching[e] && im.wallNormal[e] > 0.0 ? 1 : 0;
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      if (model_.walls[2 * k].active && (p.position[i][k] < model_.walls[2 * k].position ||
-                                         p.position[i][k] > model_.walls[2 * k + 1].position)) {
-        ++out.escaped;
-        break;
-      }
-    }
+    out.escaped += beyondActiveWalls(model_.walls, p.position[i]) ? 1 : 0;
   }
   return out;
 }

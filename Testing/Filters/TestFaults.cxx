@@ -103,9 +103,10 @@ TEST(FaultsFilters, ModelFromPointsRejectsCoincidentCentresAndEmptyInputs)
   downstream->SetFrameInterval(0.001);
   downstream->SetNumberOfFrames(1);
   EXPECT_FALSE(UpdateSucceeded(downstream));
-  EXPECT_TRUE(Contains(m3.Errors->All(), "The input model is empty: the stage before this one produced no model"))
+  EXPECT_TRUE(Contains(m3.Errors->All(), "it is empty (no 'Particles' block), so the stage before this one "
+                                         "produced no model"))
     << m3.Errors->All();
-  EXPECT_TRUE(Contains(downstream->GetLastMessage(), "The input model is empty"));
+  EXPECT_TRUE(Contains(downstream->GetLastMessage(), "it is empty"));
 
   // A model with no particles (a pack of 0 elements) is valid, and the load test says so.
   vtkNew<vtkDEMPackSource> none;

@@ -137,11 +137,6 @@ inline Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b)
 /// their contact history and every bond that joins them; the others keep their order.
 RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& remove);
 
-/// Whether a centre lies outside the model box on an axis that is not periodic (x and y
-/// only in a 2D section): a particle that left the box (Documentation/Press.md, "Escaped
-/// grains").
-bool outsideBox(const Domain& domain, const Vec3& centre);
-
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);
 
