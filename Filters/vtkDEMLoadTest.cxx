@@ -434,7 +434,8 @@ int vtkDEMLoadTest::RequestData(
       else
       {
         const std::string removed = dem::startLoadTest(in.Model, press).summary(
-          "whose centres lay outside the model box (grains that escaped during an unconfined test)");
+          "whose centres lay beyond the walls of this stage (grains that escaped while those walls "
+          "were down, in an unconfined test)");
         if (!removed.empty())
         {
           vtkWarningMacro(<< removed);

@@ -225,7 +225,7 @@ TEST(FaultsFilters, ReaderThenLoadTestRunsOnEveryKindOfStateFile)
     EXPECT_TRUE(Contains(off->GetStatus(), "t = ")) << kind.first << ": " << off->GetStatus();
     if (kind.first == "finished unconfined test")
     {
-      EXPECT_TRUE(Contains(off->GetLastMessage(), "Removed 3 particle(s) whose centres lay outside the model box"))
+      EXPECT_TRUE(Contains(off->GetLastMessage(), "Removed 3 particle(s) whose centres lay beyond the walls of this stage"))
         << off->GetLastMessage();
       EXPECT_EQ(rockdem::MultiBlockToModel(vtkMultiBlockDataSet::SafeDownCast(off->GetOutputDataObject(0)))
                   .particles.size(),

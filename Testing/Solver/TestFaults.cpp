@@ -140,8 +140,8 @@ TEST(Faults, GravityAlongAPeriodicAxisIsASourceOfEnergyNotAnInstability)
     InstabilityError);
 }
 
-// Item 4: grains outside the model box (escaped during an unconfined test) are removed,
-// with their bonds and contacts, when the next stage starts; the count is returned.
+// Item 4: grains beyond the walls a new stage stands up (escaped during an unconfined
+// test) are removed, with their bonds and contacts, when it starts; the count is returned.
 TEST(Faults, EscapedGrainsAreRemovedWithACountWhenTheNextStageStarts)
 {
   Model m = statetest::cementedMidCompression();

@@ -103,9 +103,10 @@ void validatePlatenSpeed(const Model& model, double timestep);
 /// Starts a test on the model: records the specimen size, sets up the walls for the
 /// mode (Compression and Tension remove the side walls; Tension attaches the particles
 /// next to each platen to it) and the first stage. Mode Off restores the six walls at
-/// the current box and ends any test. First removes the particles whose centres lie
-/// outside the model box (outsideBox: grains that escaped during an unconfined test)
-/// and returns what it removed (Documentation/Press.md, "Escaped grains"). Throws
+/// the current box and ends any test. Once the new stage's walls are in place, removes
+/// the particles whose centres lie beyond them (beyondActiveWalls: grains that escaped
+/// while those walls were down, in an unconfined test) with their bonds and contacts, and
+/// returns what it removed (Documentation/Press.md, "Escaped grains"). Throws
 /// InputError for invalid settings and for Mode Tension on a model without intact bonds.
 RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings);
 
