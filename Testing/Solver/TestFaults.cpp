@@ -57,22 +57,6 @@ bool contains(const std::string& text, const std::string& part)
   return text.find(part) != std::string::npos;
 }
 
-/// A loose pack of n grains in a 4 x 4 x 8 cm box (radii 1-2 mm), grown so that they touch.
-Model touchingPack(int n, std::uint64_t seed)
-{
-  Model m;
-  m.domain.size = Vec3(0.04, 0.04, 0.08);
-  m.material.youngsModulus = 1e8;
-  PackParameters params;
-  params.initialElements = n;
-  params.minimumSize = 0.001;
-  params.maximumSize = 0.002;
-  params.randomSeed = seed;
-  buildPack(m, params);
-  growElements(m);
-  return m;
-}
-
 std::string readText(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
@@ -192,7 +176,7 @@ TEST(Faults, EscapedGrainsAreRemovedWithACountWhenTheNextStageStarts)
 // error naming both, also across a periodic seam and in a 2D section.
 TEST(Faults, CoincidentCentresAreRejectedNamingBothParticles)
 {
-  Model m = touchingPack(80, 3);
+  Model m = dem::testing::specimen(80, 0.02, 0.001, 0.002, 3);
   m.particles.position[7] = m.particles.position[3];
   std::string error = inputError([&] { Simulation sim(m); });
   EXPECT_TRUE(contains(error, "Particles " + std::to_string(m.particles.id[3]) + " and " +
@@ -266,7 +250,7 @@ TEST(Faults, OverlapsAreMeasuredAndPorosityIsNeverNegative)
   const double lens = kPi * (0.04 + 0.015) * 0.005 * 0.005 / 12.0;
   EXPECT_NEAR(currentPorosity(two), 1.0 - (2 * 4.0 / 3.0 * kPi * 1e-6 - lens) / 1e-3, 1e-14);
   // A pack from DEM Pack Source has no overlap: exactly the porosity it always had.
-  Model pack = touchingPack(300, 5);
+  Model pack = dem::testing::specimen(300, 0.03, 0.001, 0.002, 5);
   EXPECT_EQ(measureOverlaps(pack).pairs, 0u);
 }
 
@@ -288,7 +272,7 @@ TEST(Faults, TensionOnAnUncementedModelIsRefused)
 // refused (thousands of threads can abort the process).
 TEST(Faults, ThreadsSayWhatRunsAndAbsurdCountsAreRefused)
 {
-  Model m = touchingPack(300, 2);
+  Model m = dem::testing::specimen(300, 0.03, 0.001, 0.002, 2);
   m.solver.threads = 8;
   Simulation sim(m);
   EXPECT_EQ(sim.path(), "CPU serial (" + std::to_string(m.particles.size()) +
