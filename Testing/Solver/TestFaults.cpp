@@ -128,8 +128,15 @@ TEST(Faults, GravityAlongAPeriodicAxisIsASourceOfEnergyNotAnInstability)
 // test) are removed, with their bonds and contacts, when it starts; the count is returned.
 TEST(Faults, EscapedGrainsAreRemovedWithACountWhenTheNextStageStarts)
 {
-  Model m = statetest::cementedMidCompression();
+  Model m = dem::testing::specimen(200, 0.012, 0.0008, 0.0012, 3);
+  cement(m, dem::testing::testCement());
   ASSERT_GT(m.bonds.size(), 0u);
+  {
+    m.gravity = Vec3(0.0, 0.0, -9.81);
+    Simulation settle(m); // contacts with history
+    settle.advance(500);
+  }
+  ASSERT_GT(m.contacts.size(), 0u);
   // Fling two grains out through the side faces, as a failing specimen does (an unconfined
   // test has no side walls, so nothing stops them), and one out through the top.
   const std::int64_t flungX = m.particles.id[5];
@@ -146,11 +153,24 @@ TEST(Faults, EscapedGrainsAreRemovedWithACountWhenTheNextStageStarts)
       }
     }
   }
+  std::size_t contactsOfThem = 0;
+  for (std::size_t k = 0; k < m.contacts.size(); ++k) {
+    for (int i : { 5, 6, 7 }) {
+      if (m.contacts.idA[k] == m.particles.id[i] || m.contacts.idB[k] == m.particles.id[i]) {
+        ++contactsOfThem;
+        break;
+      }
+    }
+  }
+  ASSERT_GT(bondsOfThem, 0u);
   const std::size_t bonds = m.bonds.size();
+  const std::size_t contacts = m.contacts.size();
   LoadTestSettings off; // Mode Off: the six walls come back on the box faces
   const RemovedParticles removed = startLoadTest(m, off);
   EXPECT_EQ(removed.particles, 3u);
   EXPECT_EQ(removed.bonds, bondsOfThem);
+  EXPECT_EQ(removed.contacts, contactsOfThem);
+  EXPECT_EQ(m.contacts.size(), contacts - contactsOfThem);
   EXPECT_EQ(m.particles.size(), n - 3);
   EXPECT_EQ(m.bonds.size(), bonds - bondsOfThem);
   for (std::int64_t id : m.particles.id) {
