@@ -1,12 +1,13 @@
 // Rock behaviour benchmark: builds a dense cemented specimen (Compact Elements, then DEM
 // Cement over a Bond Range) and runs the laboratory tests on it with the engine, printing
-// the figures of Documentation/RockBehaviour.md: porosity, bonded coordination, UCS, E,
+// the figures of Documentation/Rock.md: porosity, bonded coordination, UCS, E,
 // nu, direct tensile strength, UCS / sigma_t, triaxial peaks and the Mohr-Coulomb fit, the
 // share of broken bonds near the platens when the unconfined stress has fallen to 70 % of
 // its peak, and the DFN (DEM Fractures To DFN at default settings) of that frame.
 //
 //   rockdem_bench_rock [--particles 10000] [--range 1.4] [--tests ucs,tension,triaxial]
-//                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6] ...
+//                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6]
+//                      [--moment-contribution 1] ...
 // Every option is listed by --help. SI units.
 #include "dem/Cement.h"
 #include "dem/Fractures.h"
@@ -46,6 +47,7 @@ struct Options {
   double tensile = 1e6;         // Pa
   double cohesion = 4e6;        // Pa
   double bondFriction = 30.0;   // degrees
+  double beta = 1.0;            // moment contribution factor
   double scatter = 0.2;
   double strainPerStep = 2e-7;  // platen strain per step (sets the strain rate)
   double safety = 0.3;
@@ -82,6 +84,7 @@ Options parse(int argc, char** argv)
     { "--friction", &o.friction }, { "--rolling", &o.rolling }, { "--range", &o.range },
     { "--gap", &o.gap }, { "--multiplier", &o.multiplier }, { "--ratio", &o.ratio },
     { "--tensile", &o.tensile }, { "--cohesion", &o.cohesion }, { "--bond-friction", &o.bondFriction },
+    { "--moment-contribution", &o.beta },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain } };
   for (int i = 1; i < argc; ++i) {
@@ -166,6 +169,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   cp.tensileStrength = o.tensile;
   cp.cohesion = o.cohesion;
   cp.frictionAngle = o.bondFriction;
+  cp.momentContribution = o.beta;
   cp.strengthScatter = o.scatter;
   cp.randomSeed = o.seed;
   cemented = cement(m, cp);
@@ -344,7 +348,8 @@ int main(int argc, char** argv)
   std::printf("specimen: %zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
               m.particles.size(), width, width, m.domain.size.z(), width / diameter,
               compacted.summary().c_str());
-  std::printf("cement: Bond Range %.3g -> %s (%.1f s)\n", o.range, cemented.summary().c_str(), secondsSince(start));
+  std::printf("cement: Bond Range %.3g, Moment Contribution %.3g -> %s (%.1f s)\n", o.range, o.beta,
+              cemented.summary().c_str(), secondsSince(start));
   std::fflush(stdout);
 
   double ucs = 0.0;

@@ -52,9 +52,27 @@ Model loosePack(bool planar, int n, std::uint64_t seed = 3)
   return m;
 }
 
+/// Volume two particles of radii a, b at centre distance d share, written out: the lens of
+/// two spheres (pi (a + b - d)^2 (d^2 + 2 d (a + b) - 3 (a - b)^2) / (12 d)) or, for discs,
+/// the lens area of two circles times the slab t.
+double lensVolume(bool planar, double t, double a, double b, double d)
+{
+  if (d >= a + b) {
+    return 0.0;
+  }
+  if (planar) {
+    const double area = a * a * std::acos((d * d + a * a - b * b) / (2.0 * d * a)) +
+      b * b * std::acos((d * d + b * b - a * a) / (2.0 * d * b)) -
+      0.5 * std::sqrt((-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b));
+    return area * t;
+  }
+  return Pi * (a + b - d) * (a + b - d) * (d * d + 2.0 * d * (a + b) - 3.0 * (a - b) * (a - b)) / (12.0 * d);
+}
+
 /// Current Porosity from its definition (Pack.h), written out: solid volume (spheres
-/// 4/3 pi r^3, discs pi r^2 t) over the box, whose extent along the up axis (opposite to
-/// gravity) runs only to the highest particle surface.
+/// 4/3 pi r^3, discs pi r^2 t, the volume overlapping pairs share counted once, all pairs
+/// by brute force) over the box, whose extent along the up axis (opposite to gravity)
+/// runs only to the highest particle surface.
 double independentPorosity(const Model& m)
 {
   const Particles& p = m.particles;
@@ -66,6 +84,10 @@ double independentPorosity(const Model& m)
     const double r = p.radius[i];
     solid += planar ? Pi * r * r * m.domain.size.z() : 4.0 / 3.0 * Pi * r * r * r;
     top = std::max(top, p.position[i][up] + r);
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double d = bruteforce::separation(m.domain, p.position[i], p.position[j]).norm();
+      solid -= lensVolume(planar, m.domain.size.z(), r, p.radius[j], d);
+    }
   }
   Vec3 extent = m.domain.size;
   extent[up] = std::min(top, m.domain.upper()[up]) - m.domain.origin[up];
@@ -107,7 +129,6 @@ TEST(Compact, ReachesTheTargetAndReportsThePorosityComputedIndependently)
     EXPECT_EQ(r.porosity, currentPorosity(m));
     EXPECT_NEAR(r.porosity, independentPorosity(m), 1e-12);
     EXPECT_NEAR(r.porosityBefore, before, 1e-12);
-    EXPECT_LE(r.porosity, c.targetPorosity + 1e-12);
     // It stops at the target (the solid over the whole box is exactly the target's).
     double solid = 0.0;
     for (double radius : m.particles.radius) {
@@ -115,6 +136,12 @@ TEST(Compact, ReachesTheTargetAndReportsThePorosityComputedIndependently)
     }
     const Vec3& s = m.domain.size;
     EXPECT_NEAR(1.0 - solid / (s.x() * s.y() * s.z()), c.targetPorosity, 1e-9);
+    // Current Porosity counts the volume overlapping pairs share once: above the target by
+    // exactly that shared volume over the box (a pack below jamming barely overlaps).
+    const double shared = independentPorosity(m) - (1.0 - solid / (s.x() * s.y() * s.z()));
+    EXPECT_GE(shared, 0.0);
+    EXPECT_LT(shared, 1e-6);
+    EXPECT_LE(r.porosity, c.targetPorosity + shared + 1e-12);
     EXPECT_GT(r.steps, 0);
     EXPECT_EQ(r.particles, m.particles.size());
   }

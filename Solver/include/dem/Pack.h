@@ -172,7 +172,8 @@ CompactReport compactElements(Model& model, const CompactParameters& params);
 /// the box walls (non-periodic moving axes), overlap / r. 0 when nothing overlaps.
 double largestOverlap(const Model& model);
 
-/// Current Porosity: 1 - (solid volume) / (occupied volume). The occupied volume is the
+/// Current Porosity: 1 - (solid volume) / (occupied volume), never below 0. The solid
+/// volume counts the volume two overlapping particles share once (dem/Overlaps.h). The occupied volume is the
 /// box, except along the "up" axis (opposite to gravity) when that axis has walls: there
 /// it extends only up to the top of the highest particle (a settled pack is measured to
 /// its top, not to the box ceiling). 2D: areas of discs over the section area.
