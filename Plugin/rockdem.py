@@ -404,3 +404,130 @@ def show_fractures(dfn, view=None, model=None, opacity=0.85):
     lut.Annotations = ["0", "Tensile", "1", "Shear", "2", "Inherited"]
     lut.IndexedColors = [c for rgb in FRACTURE_SET_COLORS for c in rgb]
     return display
+
+
+# ---------------------------------------------------------------------------------------
+# Seeing inside the rock: sections, voxel models, close-up rendering
+# (DEM Section, DEM Voxelize; Documentation/Sections.md).
+# ---------------------------------------------------------------------------------------
+
+#: Colours of the broken-bond traces by FailureMode (1 tension, 2 shear, 3 inherited): the
+#: colours of the fracture sets they become (FRACTURE_SET_COLORS).
+FAILURE_MODE_COLORS = FRACTURE_SET_COLORS
+
+
+def section(model, orientation="XY", origin=None, normal=None, **props):
+    """A DEM Section of a RockDEM model.
+
+    orientation: 'XY', 'XZ', 'YZ' (the reference guide's sections: planes of constant Z, Y,
+    X) or 'Custom' (give ``normal``). origin: a point of the plane (m); default the centre
+    of the model's bounds. props go to the proxy (TraceDistance, CircleSides). Returns the
+    proxy; its outputs are port 0 the circles, port 1 the bond crossings, port 2 the
+    broken-bond traces.
+    """
+    if normal is not None and orientation != "Custom":
+        raise ValueError("a normal is only used with orientation 'Custom' (got %r)" % orientation)
+    props = dict(props)
+    props["Section"] = orientation
+    if normal is not None:
+        props["Normal"] = list(normal)
+    proxy = _filter("DEMSection")(Input=model, **props)
+    if origin is not None:
+        proxy.Origin = list(origin)
+    return proxy
+
+
+def show_section(section_proxy, view=None, color_by="VonMisesStress", traces=True, crossings=False,
+                 trace_width=3.0):
+    """Show a DEM Section: the circles (port 0) as surfaces coloured by a particle array
+    (``color_by``, e.g. 'VonMisesStress', 'MeanStress', 'Radius'; None for plain grey),
+    with ``traces`` the broken-bond traces (port 2) as lines coloured by FailureMode (red
+    tension, blue shear, green inherited), with ``crossings`` the intact bonds crossing the
+    plane (port 1) as points. Returns the circles' representation."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    display = _simple.Show(_simple.OutputPort(section_proxy, 0), view)
+    display.SetRepresentationType("Surface")
+    if color_by:
+        _simple.ColorBy(display, ("CELLS", color_by))
+        display.RescaleTransferFunctionToDataRange(True, False)
+        display.SetScalarBarVisibility(view, True)
+    else:
+        _simple.ColorBy(display, None)
+    if traces:
+        lines = _simple.Show(_simple.OutputPort(section_proxy, 2), view)
+        lines.SetRepresentationType("Wireframe")
+        lines.LineWidth = trace_width
+        _simple.ColorBy(lines, ("CELLS", "FailureMode"))
+        lut = _simple.GetColorTransferFunction("FailureMode")
+        lut.InterpretValuesAsCategories = 1
+        lut.Annotations = ["1", "Tension", "2", "Shear", "3", "Inherited"]
+        lut.IndexedColors = [c for rgb in FAILURE_MODE_COLORS for c in rgb]
+        lines.SetScalarBarVisibility(view, True)
+    if crossings:
+        points = _simple.Show(_simple.OutputPort(section_proxy, 1), view)
+        points.SetRepresentationType("Points")
+        points.PointSize = 4.0
+        _simple.ColorBy(points, None)
+        points.AmbientColor = points.DiffuseColor = [0.1, 0.1, 0.1]
+    return display
+
+
+def voxelize(model, number_of_voxels=64, voxel_size=None, fractures=None, **props):
+    """A DEM Voxelize of a RockDEM model: ``number_of_voxels`` along the longest axis, or
+    cubes of ``voxel_size`` (m) when given; ``fractures``: a DFN (e.g. a DEM Fractures To
+    DFN) rasterised into FractureIntensity. props go to the proxy (MemoryLimit). Returns
+    the proxy (a vtkImageData: volume rendering, Contour, Slice, Save Data as .vti)."""
+    props = dict(props)
+    if voxel_size is not None:
+        props.update(SizeBy="Voxel Size", VoxelSize=float(voxel_size))
+    else:
+        props.update(SizeBy="Number Of Voxels", NumberOfVoxels=int(number_of_voxels))
+    if fractures is not None:
+        props["Fractures"] = fractures
+    return _filter("DEMVoxelize")(Input=model, **props)
+
+
+def show_voxels(voxels, view=None, array="Damage", opacity=None, color_map="Inferno (matplotlib)"):
+    """Volume-render an array of a DEM Voxelize (default Damage). ``opacity``: the scalar
+    opacity as [value, alpha, value, alpha, ...] (default: transparent at 0 rising to 0.8
+    at the array's maximum). Returns the representation."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    display = _simple.Show(voxels, view)
+    _simple.ColorBy(display, ("POINTS", array))
+    display.SetRepresentationType("Volume")
+    display.RescaleTransferFunctionToDataRange(True, False)
+    lut = _simple.GetColorTransferFunction(array)
+    lut.ApplyPreset(color_map, True)
+    pwf = _simple.GetOpacityTransferFunction(array)
+    low, high = voxels.PointData[array].GetRange()
+    if opacity is None:
+        high = high if high > low else low + 1.0
+        opacity = [low, 0.0, low + 0.15 * (high - low), 0.05, high, 0.8]
+    pwf.Points = [v for k in range(0, len(opacity), 2) for v in (opacity[k], opacity[k + 1], 0.5, 0.0)]
+    display.SetScalarBarVisibility(view, True)
+    return display
+
+
+def show_as_sphere_glyphs(source, view=None, port=0, color_by="Radius", resolution=24):
+    """Draw a RockDEM model's particles as true spheres: ParaView's 3D Glyphs
+    representation (instanced sphere meshes, lit like any surface), each scaled to its
+    particle's Radius. Correct at any zoom and taking part in shadows where the renderer
+    casts them (Documentation/Sections.md, "Close-up rendering"). For close-ups and
+    publication pictures; Point Gaussian (show_particles) stays the default for large
+    models. ``resolution``: facets around a sphere. Returns the representation."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    display = _simple.Show(_simple.OutputPort(source, port), view)
+    display.SetRepresentationType("3D Glyphs")
+    display.GlyphType = "Sphere"
+    display.GlyphType.ThetaResolution = resolution
+    display.GlyphType.PhiResolution = resolution
+    display.GlyphType.Radius = 0.5
+    display.Orient = 0
+    display.ScaleArray = ["POINTS", "Radius"]
+    display.ScaleFactor = 2.0  # the glyph sphere has diameter 1: scaled by 2 Radius
+    if color_by:
+        _simple.ColorBy(display, ("POINTS", color_by))
+        display.RescaleTransferFunctionToDataRange(True, False)
+    else:
+        _simple.ColorBy(display, None)
+    return display
