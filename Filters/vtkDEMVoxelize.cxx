@@ -4,10 +4,12 @@
 #include "vtkDEMModelConversion.h"
 #include "vtkDEMPipelineTime.h"
 
+#include "dem/Errors.h"
 #include "dem/Model.h"
 #include "dem/ParticleStress.h"
 #include "dem/Voxelize.h"
 
+#include <vtkAlgorithmOutput.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -51,7 +53,9 @@ vtkDEMVoxelize::vtkDEMVoxelize()
   : SizeBy(1)
   , VoxelSize(0.001)
   , NumberOfVoxels(64)
+  , Margin(0.05)
   , MemoryLimit(2048.0)
+  , GridValid(false)
 {
   this->SetNumberOfInputPorts(2);
   this->ResetResults();
@@ -63,6 +67,9 @@ void vtkDEMVoxelize::ResetResults()
 {
   std::fill(this->GridDimensions, this->GridDimensions + 3, 0);
   std::fill(this->VoxelSpacing, this->VoxelSpacing + 3, 0.0);
+  std::fill(this->GridOrigin, this->GridOrigin + 3, 0.0);
+  std::fill(this->GridWraps, this->GridWraps + 3, 0);
+  this->GridValid = false;
   this->SolidVolume = 0.0;
   this->FractureArea = 0.0;
 }
@@ -81,10 +88,70 @@ int vtkDEMVoxelize::FillInputPortInformation(int port, vtkInformation* info)
   return 1;
 }
 
-int vtkDEMVoxelize::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*)
+namespace
 {
-  // The grid depends on where the particles are, known in RequestData only: the output
-  // carries its extent itself (no WHOLE_EXTENT here). The upstream times pass through.
+dem::VoxelParameters Parameters(int sizeBy, double voxelSize, int numberOfVoxels, double margin, double limit)
+{
+  dem::VoxelParameters params;
+  params.sizing = dem::voxelSizing(sizeBy);
+  params.voxelSize = voxelSize;
+  params.numberOfVoxels = numberOfVoxels;
+  params.margin = margin;
+  params.memoryLimit = limit;
+  dem::validate(params);
+  return params;
+}
+}
+
+int vtkDEMVoxelize::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // ParaView needs the image's extent before it asks for a time: the grid is fitted here,
+  // to the model at the upstream's first time step (or as it is), and kept for all times.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  this->ResetResults();
+  try
+  {
+    const dem::VoxelParameters params = Parameters(
+      this->SizeBy, this->VoxelSize, this->NumberOfVoxels, this->Margin, this->MemoryLimit);
+    vtkAlgorithm* upstream = this->GetInputAlgorithm(0, 0);
+    const int port = this->GetInputConnection(0, 0)->GetIndex();
+    auto* executive = vtkStreamingDemandDrivenPipeline::SafeDownCast(upstream->GetExecutive());
+    const int times = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    vtkNew<vtkInformationVector> requests;
+    requests->SetNumberOfInformationObjects(upstream->GetNumberOfOutputPorts());
+    if (times > 0)
+    {
+      requests->GetInformationObject(port)->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(),
+        inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[0]);
+    }
+    executive->Update(port, requests);
+    const dem::Model reference =
+      rockdem::MultiBlockToModel(vtkMultiBlockDataSet::SafeDownCast(upstream->GetOutputDataObject(port)));
+    const bool withFractures = inputVector[1]->GetNumberOfInformationObjects() > 0;
+    const dem::VoxelGrid grid = dem::planVoxelGrid(reference, params, withFractures);
+    for (int k = 0; k < 3; ++k)
+    {
+      this->GridDimensions[k] = grid.dimensions[k];
+      this->VoxelSpacing[k] = grid.spacing[k];
+      this->GridOrigin[k] = grid.origin[k];
+      this->GridWraps[k] = grid.wraps[k] ? 1 : 0;
+    }
+    this->GridValid = true;
+    const int extent[6] = { 0, grid.dimensions[0] - 1, 0, grid.dimensions[1] - 1, 0, grid.dimensions[2] - 1 };
+    const dem::Vec3 first = grid.origin + 0.5 * grid.spacing; // the centre of voxel (0, 0, 0)
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), first.x(), first.y(), first.z());
+    outInfo->Set(vtkDataObject::SPACING(), grid.spacing.x(), grid.spacing.y(), grid.spacing.z());
+  }
+  catch (const std::exception& e)
+  {
+    this->ResetResults();
+    this->LastMessageText = e.what();
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
   return 1;
 }
 
@@ -101,18 +168,21 @@ int vtkDEMVoxelize::RequestData(
   auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
   auto* dfn = inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPolyData::GetData(inputVector[1], 0) : nullptr;
   output->Initialize();
-  this->ResetResults();
   try
   {
-    dem::VoxelParameters params;
-    params.sizing = dem::voxelSizing(this->SizeBy);
-    params.voxelSize = this->VoxelSize;
-    params.numberOfVoxels = this->NumberOfVoxels;
-    params.memoryLimit = this->MemoryLimit;
-    dem::validate(params);
+    if (!this->GridValid)
+    {
+      throw dem::InputError(this->LastMessageText.empty() ? "DEM Voxelize has no grid." : this->LastMessageText);
+    }
+    dem::VoxelGrid grid;
+    for (int k = 0; k < 3; ++k)
+    {
+      grid.dimensions[k] = this->GridDimensions[k];
+      grid.origin[k] = this->GridOrigin[k];
+      grid.spacing[k] = this->VoxelSpacing[k];
+      grid.wraps[k] = this->GridWraps[k] != 0;
+    }
     const dem::Model model = rockdem::MultiBlockToModel(input);
-    // Refuse a grid over the limit before the particle stresses are computed.
-    dem::planVoxelGrid(model, params, dfn != nullptr);
     dem::FractureSetPolygons fractures;
     if (dfn)
     {
@@ -125,7 +195,7 @@ int vtkDEMVoxelize::RequestData(
       }
     }
     const dem::VoxelModel vox =
-      dem::voxelize(model, params, dem::particleStresses(model), dfn ? &fractures : nullptr);
+      dem::voxelize(model, grid, dem::particleStresses(model), dfn ? &fractures : nullptr);
 
     const dem::VoxelGrid& g = vox.grid;
     output->SetDimensions(g.dimensions[0], g.dimensions[1], g.dimensions[2]);
@@ -148,14 +218,6 @@ int vtkDEMVoxelize::RequestData(
       pd->AddArray(FieldArray<vtkIntArray>("FractureSet", vox.fractureSet, 1));
     }
     pd->SetActiveScalars("Damage");
-    int extent[6] = { 0, g.dimensions[0] - 1, 0, g.dimensions[1] - 1, 0, g.dimensions[2] - 1 };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-
-    std::copy(g.dimensions.begin(), g.dimensions.end(), this->GridDimensions);
-    for (int k = 0; k < 3; ++k)
-    {
-      this->VoxelSpacing[k] = g.spacing[k];
-    }
     this->SolidVolume = vox.solidVolume;
     this->FractureArea = vox.fractureArea;
     this->LastMessageText = vox.message;
@@ -163,7 +225,8 @@ int vtkDEMVoxelize::RequestData(
   }
   catch (const std::exception& e)
   {
-    this->ResetResults();
+    this->SolidVolume = 0.0;
+    this->FractureArea = 0.0;
     this->LastMessageText = e.what();
     vtkErrorMacro(<< e.what());
     output->Initialize();
@@ -179,6 +242,7 @@ void vtkDEMVoxelize::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SizeBy: " << this->SizeBy << "\n";
   os << indent << "VoxelSize: " << this->VoxelSize << " m\n";
   os << indent << "NumberOfVoxels: " << this->NumberOfVoxels << "\n";
+  os << indent << "Margin: " << this->Margin << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "GridDimensions: " << this->GridDimensions[0] << " " << this->GridDimensions[1] << " "
      << this->GridDimensions[2] << "\n";

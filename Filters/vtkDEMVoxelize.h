@@ -13,6 +13,12 @@
  * array, when present, gives FractureSet. The voxel model follows time (with a stepped
  * upstream model it is built from the model at the time asked for).
  *
+ * The grid is fitted (RequestInformation) to the model at the upstream's first time step
+ * (the model as it is when it is not stepped) and stays fixed while time changes, so the
+ * voxels of all frames coincide and ParaView knows the image's extent before it asks for
+ * a time; the parts of particles that leave it later (fragments flying off) are not
+ * counted and the message says how much (Margin leaves room for the specimen to spread).
+ *
  * Output: vtkImageData with one point per voxel, at the voxel's centre (so that volume
  * rendering, Contour and Slice work on it directly), spacing = the voxel edges, point
  * arrays SolidFraction, Bonds, BrokenBonds, Damage, BrokenBondDensity (1/m^3), Stress (Pa,
@@ -56,6 +62,13 @@ public:
   ///@}
 
   ///@{
+  /// Room around the particles' extent on each side, as a fraction of its longest axis
+  /// (>= 0): a grid fitted to the start of a run keeps the particles as they spread.
+  vtkSetMacro(Margin, double);
+  vtkGetMacro(Margin, double);
+  ///@}
+
+  ///@{
   /// The largest grid to build, MiB (> 0).
   vtkSetMacro(MemoryLimit, double);
   vtkGetMacro(MemoryLimit, double);
@@ -82,10 +95,14 @@ protected:
   int SizeBy;
   double VoxelSize;
   int NumberOfVoxels;
+  double Margin;
   double MemoryLimit;
 
   int GridDimensions[3];
   double VoxelSpacing[3];
+  double GridOrigin[3]; // m, the lowest corner of the grid fitted in RequestInformation
+  int GridWraps[3];     // periodic axes
+  bool GridValid;
   double SolidVolume;
   double FractureArea;
   std::string LastMessageText;

@@ -214,6 +214,7 @@ TEST(VoxelizeFilter, ImageCarriesTheVoxelFields)
   voxelize->SetInputDataObject(0, mb);
   voxelize->SetSizeBy(1);
   voxelize->SetNumberOfVoxels(8);
+  voxelize->SetMargin(0.0);
   ASSERT_TRUE(UpdateSucceeded(voxelize));
   auto* image = vtkImageData::SafeDownCast(voxelize->GetOutputDataObject(0));
   ASSERT_NE(image, nullptr);

@@ -42,6 +42,8 @@ struct VoxelParameters {
   VoxelSizing sizing = VoxelSizing::NumberOfVoxels;
   double voxelSize = 0.001;   ///< m, > 0 (VoxelSize sizing)
   int numberOfVoxels = 64;    ///< along the longest axis, >= 1 (NumberOfVoxels sizing)
+  double margin = 0.05;       ///< -, >= 0: room around the particles' extent on each side,
+                              ///< as a fraction of its longest axis (not on periodic axes)
   double memoryLimit = 2048;  ///< MiB, > 0: the largest grid to build
 };
 
@@ -66,10 +68,14 @@ struct VoxelGrid {
 /// Bytes per voxel that voxelize() and the VTK copy of its result hold at the peak.
 std::size_t voxelBytes(bool withFractures);
 
-/// The grid for a model: over the spheres' extent (centre +- radius) on each axis; on a
-/// periodic axis over the model box, with the spacing that divides it exactly; in a 2D
-/// section one layer through the slab. Voxels are cubes of the Voxel Size (or of the
-/// longest extent / Number Of Voxels) except on periodic axes and the 2D slab axis.
+/// The grid fitted to a model: over the spheres' extent (centre +- radius) widened on each
+/// side by the margin x its longest axis; on a periodic axis over the model box, with the
+/// spacing that divides it exactly; in a 2D section one layer through the slab. Voxels are
+/// cubes of the Voxel Size (or of the longest extent / Number Of Voxels, the extent
+/// without the margin) except on periodic axes and the 2D slab axis. A grid fitted to
+/// one state of a run serves its other states (the voxels stay where they are while the
+/// model moves): the parts of particles and the bonds that leave it are not counted, and
+/// the voxel model says how much.
 /// Throws InputError when the grid needs more memory than the Memory Limit or than the
 /// machine has available (the message names the voxel size, the grid, the memory needed
 /// and the limit).
@@ -97,14 +103,19 @@ struct VoxelModel {
   std::vector<std::int32_t> fractureSet;  ///< set with the most area (-1 none; empty without a DFN)
   double solidVolume = 0.0;               ///< m^3, sum over the voxels
   double particleVolume = 0.0;            ///< m^3, sum of the particles' volumes
+  std::size_t bondsOutside = 0;           ///< bonds whose midpoint lies outside the grid
   double fractureArea = 0.0;              ///< m^2, fracture area inside the grid
   std::string message;                    ///< the grid and what it holds
 };
 
-/// Builds the voxel model. `stresses` are the particle stresses (particleStresses(),
-/// slot order). `fractures` (may be null) are rasterised into the fracture intensity.
-/// Throws InputError for invalid parameters or fractures (validate()), a grid over the
-/// memory limit (planVoxelGrid), a model without particles, or stresses of the wrong size.
+/// Builds the voxel model of a model state on a grid (planVoxelGrid). `stresses` are the
+/// particle stresses (particleStresses(), slot order). `fractures` (may be null) are
+/// rasterised into the fracture intensity. Throws InputError for invalid fractures, a grid
+/// without voxels, or stresses of the wrong size.
+VoxelModel voxelize(const Model& model, const VoxelGrid& grid, const std::vector<StressTensor>& stresses,
+                    const FractureSetPolygons* fractures);
+
+/// voxelize() on the grid fitted to the model itself (planVoxelGrid(model, params, ...)).
 VoxelModel voxelize(const Model& model, const VoxelParameters& params,
                     const std::vector<StressTensor>& stresses, const FractureSetPolygons* fractures);
 

@@ -90,6 +90,7 @@ void validate(const VoxelParameters& params)
     throw InputError("Number Of Voxels = " + std::to_string(params.numberOfVoxels) +
                      " is out of range: valid range is 1 or more (voxels along the longest axis).");
   }
+  requireNonNegative("Margin", params.margin);
   requirePositive("Memory Limit", params.memoryLimit, "MiB");
 }
 
@@ -125,13 +126,17 @@ VoxelGrid planVoxelGrid(const Model& model, const VoxelParameters& params, bool 
       hi[k] = d.origin[k] + d.size[k];
     }
   }
-  double size = params.voxelSize;
-  if (params.sizing == VoxelSizing::NumberOfVoxels) {
-    double longest = 0.0;
-    for (int k = 0; k < axes; ++k) {
-      longest = std::max(longest, hi[k] - lo[k]);
+  double longest = 0.0;
+  for (int k = 0; k < axes; ++k) {
+    longest = std::max(longest, hi[k] - lo[k]);
+  }
+  const double size = params.sizing == VoxelSizing::NumberOfVoxels ? longest / params.numberOfVoxels
+                                                                   : params.voxelSize;
+  for (int k = 0; k < axes; ++k) {
+    if (!periodic[k]) {
+      lo[k] -= params.margin * longest;
+      hi[k] += params.margin * longest;
     }
-    size = longest / params.numberOfVoxels;
   }
   VoxelGrid g;
   std::array<double, 3> count{};
@@ -195,6 +200,15 @@ double polygonBoxArea(const FracturePolygon& polygon, const Vec3& lo, const Vec3
 VoxelModel voxelize(const Model& model, const VoxelParameters& params,
                     const std::vector<StressTensor>& stresses, const FractureSetPolygons* fractures)
 {
+  return voxelize(model, planVoxelGrid(model, params, fractures != nullptr), stresses, fractures);
+}
+
+VoxelModel voxelize(const Model& model, const VoxelGrid& grid, const std::vector<StressTensor>& stresses,
+                    const FractureSetPolygons* fractures)
+{
+  if (grid.count() == 0 || !(grid.voxelVolume() > 0.0)) {
+    throw InputError("The voxel grid has no voxels.");
+  }
   if (fractures) {
     validate(fractures->polygons);
     if (fractures->sets.size() != fractures->polygons.size()) {
@@ -203,7 +217,7 @@ VoxelModel voxelize(const Model& model, const VoxelParameters& params,
     }
   }
   VoxelModel out;
-  out.grid = planVoxelGrid(model, params, fractures != nullptr);
+  out.grid = grid;
   const Particles& p = model.particles;
   if (stresses.size() != p.size()) {
     throw InputError("The particle stresses have " + std::to_string(stresses.size()) + " entries for " +
@@ -271,7 +285,7 @@ VoxelModel voxelize(const Model& model, const VoxelParameters& params,
           }
           v *= scale;
           if (!(v > 0.0) || kx < 0 || ky < 0 || kz < 0) {
-            continue; // outside the grid only on a non-periodic axis: never for the planned grid
+            continue; // outside the grid (fitted to another state of the run): not counted
           }
           const std::size_t vox = static_cast<std::size_t>(kx + n[0] * (ky + static_cast<long>(n[1]) * kz));
           out.solidFraction[vox] += v;
@@ -296,7 +310,8 @@ VoxelModel voxelize(const Model& model, const VoxelParameters& params,
       index[k] = (planar && k == 2) ? 0 : wrapIndex(cellIndex(mid[k], g.origin[k], g.spacing[k]), n[k], g.wraps[k]);
     }
     if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
-      continue; // the midpoint of two centres lies within the spheres' extent: never
+      ++out.bondsOutside; // outside a grid fitted to another state of the run
+      continue;
     }
     const std::size_t vox = static_cast<std::size_t>(index[0] + n[0] * (index[1] + static_cast<long>(n[1]) * index[2]));
     ++out.bonds[vox];
@@ -379,6 +394,12 @@ VoxelModel voxelize(const Model& model, const VoxelParameters& params,
         << " m^2 of them inside the grid";
   }
   msg << ".";
+  const double outside = out.particleVolume - out.solidVolume;
+  if (outside > 1e-9 * out.particleVolume || out.bondsOutside > 0) {
+    msg << " Outside the grid (fitted to another state of the run): " << formatValue(outside) << " m^3 ("
+        << formatValue(100.0 * outside / out.particleVolume) << " %) of the particles' volume and "
+        << out.bondsOutside << " bonds, not counted.";
+  }
   for (int k = 0; k < 3; ++k) {
     if (g.wraps[k]) {
       msg << " Periodic " << AxisName[k] << ": the voxels divide the model box.";
