@@ -452,7 +452,7 @@ def show_section(section_proxy, view=None, color_by="VonMisesStress", traces=Tru
         display.RescaleTransferFunctionToDataRange(True, False)
         display.SetScalarBarVisibility(view, True)
     else:
-        _simple.ColorBy(display, None)
+        display.ColorArrayName = ["POINTS", ""]
     if traces:
         lines = _simple.Show(_simple.OutputPort(section_proxy, 2), view)
         lines.SetRepresentationType("Wireframe")
@@ -470,7 +470,7 @@ def show_section(section_proxy, view=None, color_by="VonMisesStress", traces=Tru
         points = _simple.Show(_simple.OutputPort(section_proxy, 1), view)
         points.SetRepresentationType("Points")
         points.PointSize = 4.0
-        _simple.ColorBy(points, None)
+        points.ColorArrayName = ["POINTS", ""]
         points.AmbientColor = points.DiffuseColor = [0.1, 0.1, 0.1]
     return display
 
@@ -512,63 +512,55 @@ def show_voxels(voxels, view=None, array="Damage", opacity=None, color_map="Infe
 
 
 def show_as_sphere_glyphs(source, view=None, port=0, color_by="Radius", resolution=24, shadows=False):
-    """Draw a RockDEM model's particles as true spheres, each of its particle's Radius:
-    correct at any zoom and lit like any surface. For close-ups and publication pictures;
+    """Draw a RockDEM model's particles as true spheres: ParaView's 3D Glyphs
+    representation (instanced sphere meshes, lit like any surface), each scaled to its
+    particle's Radius. Correct at any zoom; for close-ups and publication pictures, while
     Point Gaussian (show_particles) stays the default for large models
-    (Documentation/Sections.md, "Close-up rendering").
-
-    Without ``shadows``: ParaView's 3D Glyphs representation (instanced sphere meshes, fast,
-    no extra memory per particle). With ``shadows``: a Glyph filter makes the spheres one
-    surface mesh (about 2 x resolution^2 triangles per particle: clip or extract the part
-    you need first on large models), and enable_shadows() makes the view cast shadows:
-    Debian's ParaView renders with OpenGL only, whose shadow and ambient-occlusion passes
-    work on surface meshes but not on glyph or Point Gaussian sprites. ``resolution``:
-    facets around a sphere. Returns the representation.
+    (Documentation/Sections.md, "Close-up rendering"). ``resolution``: facets around a
+    sphere. With ``shadows``, enable_shadows() makes the view cast shadows (the spheres on
+    each other and on any other surface). Returns the representation.
     """
     view = view or _simple.GetActiveViewOrCreate("RenderView")
-    if shadows:
-        particles = _simple.ExtractBlock(Input=_simple.OutputPort(source, port), Selectors=["/Root/Particles"])
-        spheres = _simple.Glyph(Input=particles, GlyphType="Sphere")
-        spheres.GlyphType.ThetaResolution = resolution
-        spheres.GlyphType.PhiResolution = resolution
-        spheres.GlyphType.Radius = 0.5
-        spheres.OrientationArray = ["POINTS", "No orientation array"]
-        spheres.ScaleArray = ["POINTS", "Radius"]
-        spheres.ScaleFactor = 2.0  # the glyph sphere has diameter 1
-        spheres.GlyphMode = "All Points"
-        display = _simple.Show(spheres, view)
-        display.SetRepresentationType("Surface")
-        display.Ambient = 0.25
-        enable_shadows(view)
-    else:
-        display = _simple.Show(_simple.OutputPort(source, port), view)
-        display.SetRepresentationType("3D Glyphs")
-        display.GlyphType = "Sphere"
-        display.GlyphType.ThetaResolution = resolution
-        display.GlyphType.PhiResolution = resolution
-        display.GlyphType.Radius = 0.5
-        display.Orient = 0
-        display.Scaling = 1
-        display.ScaleMode = "Magnitude"
-        display.SelectScaleArray = "Radius"
-        display.ScaleFactor = 2.0  # the glyph sphere has diameter 1: scaled by 2 Radius
+    # The Particles block only: the end points of the Walls and Bonds blocks have a Radius
+    # of NaN (drawn as nothing by Point Gaussian), which would give glyphs of no size and a
+    # view whose bounds are not a number.
+    particles = _simple.ExtractBlock(Input=_simple.OutputPort(source, port), Selectors=["/Root/Particles"])
+    display = _simple.Show(particles, view)
+    display.SetRepresentationType("3D Glyphs")
+    display.GlyphType = "Sphere"
+    display.GlyphType.ThetaResolution = resolution
+    display.GlyphType.PhiResolution = resolution
+    display.GlyphType.Radius = 0.5
+    display.Orient = 0
+    display.Scaling = 1
+    display.ScaleMode = "Magnitude"
+    display.SelectScaleArray = "Radius"
+    display.ScaleFactor = 2.0  # the glyph sphere has diameter 1: scaled by 2 Radius
     if color_by:
         _simple.ColorBy(display, ("POINTS", color_by))
         display.RescaleTransferFunctionToDataRange(True, False)
     else:
-        _simple.ColorBy(display, None)
+        display.ColorArrayName = ["POINTS", ""]
+    if shadows:
+        display.Ambient = 0.25  # the shadowed side is not black
+        enable_shadows(view)
     return display
 
 
-def enable_shadows(view=None, direction=(1.0, -1.0, 2.0), intensity=1.0):
-    """Make a render view cast shadows (OpenGL shadow maps, VTK's vtkShadowMapPass): one
-    directional light shining along -``direction`` (world coordinates; default from above,
-    the +X, -Y side) replaces ParaView's light kit. Surfaces cast and receive shadows
-    (true spheres: show_as_sphere_glyphs(..., shadows=True)); Point Gaussian and 3D Glyphs
-    sprites do not take part. Works where the view's renderer lives in this process
-    (pvpython, pvbatch, the GUI's Python Shell with the built-in server), not through a
-    remote pvserver. Debian's ParaView has no OSPRay ray tracing (Enable Ray Tracing is
-    refused), so this is its way to shadows. Returns the light (a vtkLight)."""
+def enable_shadows(view=None, direction=(-1.0, -0.4, 1.5), intensity=1.0, resolution=2048):
+    """Make a render view cast shadows (OpenGL shadow maps, VTK's vtkShadowMapPass).
+
+    One light shining along -``direction`` (world coordinates; default from above, the -X,
+    -Y side; a spot light far out whose cone covers the scene) replaces ParaView's light
+    kit; ``resolution`` is the shadow map's size in pixels (memory resolution^2 x 4
+    bytes). Surfaces and true spheres (show_as_sphere_glyphs, 3D Glyphs) cast and receive
+    shadows; Point Gaussian sprites cannot (their shader does not compile in the shadow
+    pass): show particles as spheres first. Works where the view's renderer lives in this
+    process (pvpython, pvbatch, the GUI's Python Shell with the built-in server), not
+    through a remote pvserver. Debian's ParaView has no OSPRay ray tracing (Enable Ray
+    Tracing is refused), so this is its way to shadows. Returns the light (a vtkLight).
+    """
+    import math
     from vtkmodules.vtkRenderingCore import vtkLight
     from vtkmodules.vtkRenderingOpenGL2 import (vtkCameraPass, vtkRenderPassCollection, vtkSequencePass,
                                                  vtkShadowMapPass)
@@ -579,15 +571,21 @@ def enable_shadows(view=None, direction=(1.0, -1.0, 2.0), intensity=1.0):
     centre = [0.5 * (bounds[2 * k] + bounds[2 * k + 1]) for k in range(3)]
     size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12)
     norm = sum(c * c for c in direction) ** 0.5
+    # A spot light far enough along the direction that its cone covers the scene (VTK's
+    # shadow maps are made for positional lights).
+    distance = 4.0 * size
     light = vtkLight()
     light.SetLightTypeToSceneLight()
-    light.SetPositional(False)
+    light.SetPositional(True)
     light.SetFocalPoint(*centre)
-    light.SetPosition(*[centre[k] + 2.0 * size * direction[k] / norm for k in range(3)])
+    light.SetPosition(*[centre[k] + distance * direction[k] / norm for k in range(3)])
+    light.SetConeAngle(2.0 * math.degrees(math.atan(size / distance)) + 10.0)
+    light.SetAttenuationValues(1.0, 0.0, 0.0)
     light.SetIntensity(intensity)
     view.UseLight = 0  # the light kit would fill the shadows in
     renderer.AddLight(light)
     shadows = vtkShadowMapPass()
+    shadows.GetShadowMapBakerPass().SetResolution(int(resolution))
     passes = vtkRenderPassCollection()
     passes.AddItem(shadows.GetShadowMapBakerPass())
     passes.AddItem(shadows)

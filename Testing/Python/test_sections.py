@@ -14,8 +14,8 @@ in unconfined compression until the axial stress has fallen to 60 % of its peak,
 (c) DEM Voxelize with the DFN of the broken bonds as its Fractures: the fields, solid
     volume, damage, fracture intensity; Contour and Slice work on it; volume rendering;
     Save Data writes a .vti that reads back with the same values;
-(d) close-up rendering: true spheres (3D Glyphs) and, with shadows, the Glyph filter
-    surfaces and the shadow-map pass; rendered pictures are not blank;
+(d) close-up rendering: true spheres (3D Glyphs), without and with the shadow-map pass;
+    the pictures are not blank;
 (e) bad input: a plane that misses the model (empty, a message, no error), Voxel Size 0,
     a grid over the Memory Limit (errors naming value and limit, no output).
 """
