@@ -1,10 +1,10 @@
 // RockDEM engine: where the bonds of a model are (see dem/BondGeometry.h).
 #include "dem/BondGeometry.h"
 
+#include "../SlotLookup.h"
 #include "dem/Errors.h"
 
 #include <string>
-#include <unordered_map>
 
 namespace dem {
 
@@ -12,11 +12,7 @@ BondGeometry bondGeometry(const Model& model)
 {
   const Particles& p = model.particles;
   const Bonds& b = model.bonds;
-  std::unordered_map<std::int64_t, std::size_t> slotOf;
-  slotOf.reserve(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    slotOf.emplace(p.id[i], i);
-  }
+  const SlotLookup slots(p);
   BondGeometry g;
   g.slotA.resize(b.size());
   g.slotB.resize(b.size());
@@ -24,14 +20,14 @@ BondGeometry bondGeometry(const Model& model)
   g.branch.resize(b.size());
   g.contact.resize(b.size());
   for (std::size_t k = 0; k < b.size(); ++k) {
-    const auto a = slotOf.find(b.idA[k]);
-    const auto c = slotOf.find(b.idB[k]);
-    if (a == slotOf.end() || c == slotOf.end()) {
-      throw InputError("Bond " + std::to_string(k) + " joins particle " +
-        std::to_string(a == slotOf.end() ? b.idA[k] : b.idB[k]) + ", which is not in the model.");
+    const long a = slots.find(b.idA[k]);
+    const long c = slots.find(b.idB[k]);
+    if (a < 0 || c < 0) {
+      throw InputError("Bond " + std::to_string(k) + " joins particle " + std::to_string(a < 0 ? b.idA[k] : b.idB[k]) +
+                       ", which is not in the model.");
     }
-    const std::size_t i = a->second;
-    const std::size_t j = c->second;
+    const std::size_t i = static_cast<std::size_t>(a);
+    const std::size_t j = static_cast<std::size_t>(c);
     g.slotA[k] = i;
     g.slotB[k] = j;
     g.start[k] = p.position[i];
