@@ -416,6 +416,25 @@ def show_fractures(dfn, view=None, model=None, opacity=0.85):
 FAILURE_MODE_COLORS = FRACTURE_SET_COLORS
 
 
+def compress_until_failure(model, fraction=0.6, **props):
+    """Unconfined compression of a cemented model past its peak: a DEM Load Test (Mode
+    Compression) run frame by frame until the axial stress has fallen to ``fraction`` of
+    the peak stress. props go to DEM Load Test (StrainRate, MaxStrain, FrameInterval,
+    NumberOfFrames, SampleInterval, ...; Gravity defaults to 0, as in a press). Returns
+    (proxy, the time of that frame in s); the time is None when the last frame comes
+    first (the test then stands at its last frame).
+    """
+    props = dict(props)
+    props.setdefault("Gravity", [0.0, 0.0, 0.0])
+    press = _filter("DEMLoadTest")(Input=model, Mode="Compression", **props)
+    for t in list(press.TimestepValues)[1:]:
+        press.UpdatePipeline(t)
+        peak = read_only(press, "PeakStress")
+        if peak > 0 and read_only(press, "AxialStress") < fraction * peak:
+            return press, t
+    return press, None
+
+
 def section(model, orientation="XY", origin=None, normal=None, **props):
     """A DEM Section of a RockDEM model.
 
@@ -594,5 +613,36 @@ def enable_shadows(view=None, direction=(-1.0, -0.4, 1.5), intensity=1.0, resolu
     camera = vtkCameraPass()
     camera.SetDelegatePass(sequence)
     renderer.SetPass(camera)
+    if not _SHADOWED:
+        import atexit
+        atexit.register(_release_shadows)  # while the OpenGL contexts still exist
+    _SHADOWED.append((view, renderer, light, camera))
     _simple.Render(view)
     return light
+
+
+#: Views with a shadow pass: (view, renderer, light, pass), released by disable_shadows.
+_SHADOWED = []
+
+
+def disable_shadows(view=None):
+    """Undo enable_shadows(): the view's shadow pass and light go (their OpenGL resources
+    released) and ParaView's light kit comes back. Done for every view at exit too: a pass
+    still holding OpenGL resources when the windows close ends the process with an X
+    error (GLXBadContext)."""
+    view = view or _simple.GetActiveView()
+    for entry in [e for e in _SHADOWED if e[0] is view]:
+        _, renderer, light, shadow_pass = entry
+        shadow_pass.ReleaseGraphicsResources(view.GetRenderWindow())
+        renderer.SetPass(None)
+        renderer.RemoveLight(light)
+        view.UseLight = 1
+        _SHADOWED.remove(entry)
+
+
+def _release_shadows():
+    for view in list(dict.fromkeys(e[0] for e in _SHADOWED)):
+        try:
+            disable_shadows(view)
+        except Exception:  # the view may be gone already; nothing else to release
+            pass

@@ -41,6 +41,14 @@ def white_view(size, time_value):
     return view
 
 
+def titled_bar(lut, view, title):
+    """The colour legend of a transfer function in a view, with a title."""
+    bar = GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    return bar
+
+
 def dark_text(view):
     """Scalar bars readable on white."""
     for rep in view.Representations:
@@ -77,13 +85,9 @@ def main():
                           FrameInterval=0.002, NumberOfFrames=8, SampleInterval=200)
         rock = DEMCement(Input=iso, BondModulus=2e7, TensileStrength=2e5, Cohesion=4e5, StrengthScatter=0.2,
                          GapTolerance=0.1)
-        press = DEMLoadTest(Input=rock, Gravity=[0, 0, 0], Mode="Compression", StrainRate=1.0, MaxStrain=0.05,
-                            FrameInterval=0.0005, NumberOfFrames=100, SampleInterval=200)
-        t = press.TimestepValues[-1]
-        for t in list(press.TimestepValues)[1:]:
-            press.UpdatePipeline(t)
-            if rockdem.read_only(press, "AxialStress") < 0.6 * rockdem.read_only(press, "PeakStress"):
-                break
+        press, t = rockdem.compress_until_failure(rock, StrainRate=1.0, MaxStrain=0.05, FrameInterval=0.0005,
+                                                  NumberOfFrames=100, SampleInterval=200)
+        t = t if t is not None else press.TimestepValues[-1]
         print("compression stopped at t = %.4g s: peak %.4g Pa, axial %.4g Pa, %d broken bonds (%.0f s)" % (
             t, press.PeakStress, press.AxialStress, rockdem.read_only(press, "BrokenBonds"), time.time() - start),
             flush=True)
@@ -100,9 +104,7 @@ def main():
     lut = GetColorTransferFunction("VonMisesStress")
     lut.ApplyPreset("Viridis (matplotlib)", True)
     circles.RescaleTransferFunctionToDataRange(False, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = "von Mises stress (Pa)"
-    bar.ComponentTitle = ""
+    titled_bar(lut, view, "von Mises stress (Pa)")
     dark_text(view)
     view.CameraPosition = [middle[0], -4 * side, middle[2]]
     view.CameraFocalPoint = middle
@@ -123,9 +125,7 @@ def main():
     outline = Show(Outline(Input=voxels), view2)  # the grid's box
     outline.ColorArrayName = ["POINTS", ""]
     outline.AmbientColor = outline.DiffuseColor = [0.2, 0.2, 0.2]
-    bar = GetScalarBar(GetColorTransferFunction("Damage"), view2)
-    bar.Title = "Damage (broken / installed bonds)"
-    bar.ComponentTitle = ""
+    titled_bar(GetColorTransferFunction("Damage"), view2, "Damage (broken / installed bonds)")
     dark_text(view2)
     view2.CameraPosition = [middle[0] + 3 * side, middle[1] - 2.2 * side, middle[2] + 1.6 * side]
     view2.CameraFocalPoint = middle
