@@ -302,3 +302,44 @@ TEST(VoxelizeFilter, BadSizeAndMemoryLimitAreNamed)
   EXPECT_NE(std::string(voxelize->GetLastMessage()).find("Voxel Size = 1e-06 m"), std::string::npos);
   EXPECT_EQ(voxelize->GetGridDimensions()[0], 0);
 }
+
+// A 2D section model is its own section: every disc in the model plane, whatever the
+// Section settings, the intact bonds at their contact points, the broken ones as segments.
+TEST(SectionFilter, TwoDimensionalModelIsDrawnAsItsDiscs)
+{
+  dem::Model m;
+  m.domain.section2D = true;
+  m.domain.size = dem::Vec3(0.02, 0.01, 0.001);
+  m.gravity = dem::Vec3(0.0, -9.81, 0.0);
+  for (int i = 0; i < 6; ++i)
+  {
+    m.particles.append(dem::Vec3(0.002 + 0.0029 * i, 0.005, m.domain.midPlaneZ()), 0.0015, i);
+  }
+  m.nextId = 6;
+  dem::updateMassProperties(m);
+  dem::CementParameters c;
+  c.gapTolerance = 0.1;
+  dem::cement(m, c);
+  ASSERT_EQ(m.bonds.size(), 5u);
+  m.bonds.markBroken(2, dem::BondFailure::Shear, 0.0, dem::Vec3::Zero(), dem::Vec3::UnitX());
+  auto mb = AsVTK(m);
+  vtkNew<vtkDEMSection> section;
+  section->SetInputDataObject(mb);
+  section->SetSection(2); // YZ: not used in 2D
+  section->SetCircleSides(16);
+  ASSERT_TRUE(UpdateSucceeded(section));
+  auto* circles = vtkPolyData::SafeDownCast(section->GetOutputDataObject(0));
+  EXPECT_EQ(circles->GetNumberOfPolys(), 6);
+  double bounds[6];
+  circles->GetBounds(bounds);
+  EXPECT_NEAR(bounds[4], m.domain.midPlaneZ(), 1e-15);
+  EXPECT_NEAR(bounds[5], m.domain.midPlaneZ(), 1e-15);
+  EXPECT_NEAR(bounds[0], 0.002 - 0.0015, 1e-12);
+  EXPECT_EQ(vtkPolyData::SafeDownCast(section->GetOutputDataObject(1))->GetNumberOfPoints(), 4);
+  auto* traces = vtkPolyData::SafeDownCast(section->GetOutputDataObject(2));
+  ASSERT_EQ(traces->GetNumberOfLines(), 1);
+  traces->GetBounds(bounds); // a segment across the bond (along Y), of the bond's diameter
+  EXPECT_NEAR(bounds[1] - bounds[0], 0.0, 1e-12);
+  EXPECT_NEAR(bounds[3] - bounds[2], 2.0 * m.bonds.radius[2], 1e-12);
+  EXPECT_NE(std::string(section->GetLastMessage()).find("2D section model is its own section"), std::string::npos);
+}
