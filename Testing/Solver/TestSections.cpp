@@ -1,5 +1,5 @@
 // Seeing inside a model (Documentation/Sections.md): exact sphere-box volumes
-// (dem/Overlap.h) against closed forms (cap, octant) and an independent quadrature; plane
+// (dem/SphereBoxVolume.h) against closed forms (cap, octant) and an independent quadrature; plane
 // sections (dem/Section.h): circles of radius sqrt(R^2 - d^2) at the projected centres,
 // uncut spheres absent, crossing bonds exactly those whose segment crosses, broken-bond
 // traces; voxel models (dem/Voxelize.h): solid volume sums to the particles' volume, a
@@ -10,7 +10,7 @@
 #include "dem/Cement.h"
 #include "dem/Errors.h"
 #include "dem/Fractures.h"
-#include "dem/Overlap.h"
+#include "dem/SphereBoxVolume.h"
 #include "dem/ParticleStress.h"
 #include "dem/Random.h"
 #include "dem/Section.h"
@@ -30,7 +30,7 @@ namespace {
 constexpr double Pi = 3.14159265358979323846;
 
 /// Volume of the unit ball with x > a, y > b, z > c by the midpoint rule on an n x n grid
-/// of columns over the disc (independent of dem/Overlap.h).
+/// of columns over the disc (independent of dem/SphereBoxVolume.h).
 double cornerByQuadrature(double a, double b, double c, int n)
 {
   const double x0 = std::max(a, -1.0);
@@ -88,7 +88,7 @@ Model spheres(const std::vector<Vec3>& x, const std::vector<double>& r)
 // ---------------------------------------------------------------------------------------
 // Exact overlap volumes
 
-TEST(Overlap, BallCornerMatchesClosedFormsAndQuadrature)
+TEST(SphereBoxVolume, BallCornerMatchesClosedFormsAndQuadrature)
 {
   EXPECT_NEAR(unitBallCornerVolume(0, 0, 0), Pi / 6.0, 1e-15) << "an octant";
   EXPECT_NEAR(unitBallCornerVolume(-1, -1, -1), 4.0 * Pi / 3.0, 1e-14) << "the ball";
@@ -117,7 +117,7 @@ TEST(Overlap, BallCornerMatchesClosedFormsAndQuadrature)
 // A sphere centred on a grid node is split into eight equal parts; offset along Z by e,
 // the four upper parts are each a quarter of the cap of height R - e; offset on all axes,
 // each part matches the quadrature and the eight add up to the sphere.
-TEST(Overlap, SphereSplitAcrossEightBoxesMatchesTheAnalyticSplit)
+TEST(SphereBoxVolume, SphereSplitAcrossEightBoxesMatchesTheAnalyticSplit)
 {
   const double R = 0.003;
   const Vec3 c(0.01, -0.02, 0.005);

@@ -80,7 +80,8 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial" or "CPU OpenMP (N threads)".
+  /// Which path runs: "CPU serial (why: too few particles for threads, Threads = 1)" or
+  /// "CPU OpenMP (N threads)".
   std::string path() const;
   const ContactModel& contactModel() const { return contactModel_; }
 
@@ -114,6 +115,7 @@ private:
   double timestep_ = 0.0;
   std::string timestepMessage_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
+  double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
   bool broken_ = false;                 ///< an instability stopped the run
 };
 

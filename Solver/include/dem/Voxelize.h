@@ -3,7 +3,7 @@
 // DEMVoxelize; Documentation/Sections.md).
 //
 // A regular grid of voxels over the particles. Each voxel holds
-// - the solid fraction: the exact volume of every sphere inside it (dem/Overlap.h; in a
+// - the solid fraction: the exact volume of every sphere inside it (dem/SphereBoxVolume.h; in a
 //   2D section model the disc area inside the pixel, the discs spanning the slab) over the
 //   voxel volume;
 // - the bonds whose midpoint lies in it (installed, broken), the damage broken /

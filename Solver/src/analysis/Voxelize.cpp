@@ -3,7 +3,7 @@
 
 #include "dem/BondGeometry.h"
 #include "dem/Errors.h"
-#include "dem/Overlap.h"
+#include "dem/SphereBoxVolume.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// RockDEM engine: exact sphere-box volumes and disc-rectangle areas (see dem/Overlap.h).
-#include "dem/Overlap.h"
+// RockDEM engine: exact sphere-box volumes and disc-rectangle areas (see dem/SphereBoxVolume.h).
+#include "dem/SphereBoxVolume.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,7 +44,7 @@ double discCorner(double r2, double b, double c, double phi)
 double clampedAsin(double x) { return std::asin(std::min(1.0, std::max(-1.0, x))); }
 double clampedAcos(double x) { return std::acos(std::min(1.0, std::max(-1.0, x))); }
 
-/// The ball corner for a, b, c >= 0 (the divergence theorem, dem/Overlap.h).
+/// The ball corner for a, b, c >= 0 (the divergence theorem, dem/SphereBoxVolume.h).
 double ballCornerNonNegative(double a, double b, double c)
 {
   if (a * a + b * b + c * c >= 1.0) {
