@@ -383,6 +383,16 @@ def triaxial_series(cemented_source, confining_stresses, delete=True, progress=N
 FRACTURE_SET_COLORS = ((0.85, 0.15, 0.15), (0.15, 0.35, 0.85), (0.2, 0.7, 0.2))
 
 
+def _categorical_colors(array, categories, colors):
+    """Make the colour map of ``array`` categorical: ``categories`` is a list of
+    (value, label), ``colors`` the RGB (0-1) of each, in the same order. Returns the map."""
+    lut = _simple.GetColorTransferFunction(array)
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = [text for value, label in categories for text in (str(value), label)]
+    lut.IndexedColors = [c for rgb in colors for c in rgb]
+    return lut
+
+
 def show_fractures(dfn, view=None, model=None, opacity=0.85):
     """Show the discs of a DEM Fractures To DFN (output port 0) coloured by Set.
 
@@ -399,10 +409,7 @@ def show_fractures(dfn, view=None, model=None, opacity=0.85):
     display.SetRepresentationType("Surface")
     display.Opacity = opacity
     _simple.ColorBy(display, ("CELLS", "Set"))
-    lut = _simple.GetColorTransferFunction("Set")
-    lut.InterpretValuesAsCategories = 1
-    lut.Annotations = ["0", "Tensile", "1", "Shear", "2", "Inherited"]
-    lut.IndexedColors = [c for rgb in FRACTURE_SET_COLORS for c in rgb]
+    _categorical_colors("Set", [(0, "Tensile"), (1, "Shear"), (2, "Inherited")], FRACTURE_SET_COLORS)
     return display
 
 
@@ -477,10 +484,8 @@ def show_section(section_proxy, view=None, color_by="VonMisesStress", traces=Tru
         lines.SetRepresentationType("Wireframe")
         lines.LineWidth = trace_width
         _simple.ColorBy(lines, ("CELLS", "FailureMode"))
-        lut = _simple.GetColorTransferFunction("FailureMode")
-        lut.InterpretValuesAsCategories = 1
-        lut.Annotations = ["1", "Tension", "2", "Shear", "3", "Inherited"]
-        lut.IndexedColors = [c for rgb in FAILURE_MODE_COLORS for c in rgb]
+        lut = _categorical_colors("FailureMode", [(1, "Tension"), (2, "Shear"), (3, "Inherited")],
+                                  FAILURE_MODE_COLORS)
         lines.SetScalarBarVisibility(view, True)
         bar = _simple.GetScalarBar(lut, view)
         bar.Title = "Failure Mode"
