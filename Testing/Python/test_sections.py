@@ -11,9 +11,10 @@ in unconfined compression until the axial stress has fallen to 60 % of its peak,
     crossing, broken-bond traces coloured by FailureMode; it follows time (a frame before
     the peak has fewer traces, each output is stamped with the frame's time) and plays
     (AnimationScene.Play over the last frames leaves it at the last frame); rendered;
-(c) DEM Voxelize with the DFN of the broken bonds as its Fractures: the fields, solid
-    volume, damage, fracture intensity; Contour and Slice work on it; volume rendering;
-    Save Data writes a .vti that reads back with the same values;
+(c) DEM Voxelize with a square fracture (a Plane source) as its Fractures: the fields,
+    solid volume, damage, fracture intensity; Contour and Slice work on it; volume
+    rendering; Save Data writes a .vti that reads back with the same values; and with the
+    specimen's own DFN (DEM Fractures To DFN): its disc area and sets;
 (d) close-up rendering: true spheres (3D Glyphs), without and with the shadow-map pass;
     the pictures are not blank;
 (e) bad input: a plane that misses the model (empty, a message, no error), Voxel Size 0,
@@ -198,6 +199,32 @@ damage, damage_back = pd.GetArray("Damage"), back.GetPointData().GetArray("Damag
 c.check(back.GetDimensions() == dims and damage_back is not None and all(
     damage_back.GetTuple1(i) == damage.GetTuple1(i) for i in range(damage.GetNumberOfTuples())),
     "Save Data writes a .vti that reads back with the same Damage")
+# The DFN of the specimen's own broken bonds (DEM Fractures To DFN with its defaults) on
+# the Fractures input: the fracture area in the grid is the discs' polygon area (CellSize,
+# independent of the filter), all inside the grid (a Margin of half the specimen), and
+# FractureSet takes the discs' Set values.
+dfn = DEMFracturesToDFN(Input=press)
+dfn.UpdatePipeline(t_stop)
+discs = servermanager.Fetch(dfn)
+sizes = servermanager.Fetch(CellSize(Input=dfn, ComputeArea=1, ComputeSum=1))
+disc_area = sum(sizes.GetCellData().GetArray("Area").GetTuple1(k) for k in range(sizes.GetNumberOfCells()))
+dfn_voxels = rockdem.voxelize(press, number_of_voxels=12, fractures=dfn, Margin=0.5)  # room for whole discs
+dfn_voxels.UpdatePipeline(t_stop)
+dfn_image = servermanager.Fetch(dfn_voxels)
+grid_bounds = dfn_image.GetBounds()
+half = [0.5 * s for s in dfn_image.GetSpacing()]  # the image's points are the voxels' centres
+inside = all(grid_bounds[2 * a] - half[a] <= discs.GetBounds()[2 * a] and
+             discs.GetBounds()[2 * a + 1] <= grid_bounds[2 * a + 1] + half[a] for a in range(3))
+dfn_sets = set(int(discs.GetCellData().GetArray("Set").GetTuple1(k)) for k in range(discs.GetNumberOfCells()))
+fracture_set = dfn_image.GetPointData().GetArray("FractureSet")
+voxel_sets = set(int(fracture_set.GetTuple1(i)) for i in range(fracture_set.GetNumberOfTuples()))
+dfn_area = rockdem.read_only(dfn_voxels, "FractureArea")
+c.check(discs.GetNumberOfCells() > 0 and
+        inside and abs(dfn_area - disc_area) < 1e-9 * disc_area and
+        voxel_sets - {-1} <= dfn_sets,
+        "the specimen's DFN (%d discs, %.4g m^2, %s the grid, sets %s) is rasterised: %.4g m^2 in the grid, "
+        "FractureSet %s" % (discs.GetNumberOfCells(), disc_area, "inside" if inside else "partly outside",
+                            sorted(dfn_sets), dfn_area, sorted(voxel_sets)))
 voxels.UpdatePipeline(t_before)
 image_early = servermanager.Fetch(voxels)
 c.check(image_early.GetDimensions() == dims and
