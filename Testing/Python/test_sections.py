@@ -16,7 +16,8 @@ in unconfined compression until the axial stress has fallen to 60 % of its peak,
     rendering; Save Data writes a .vti that reads back with the same values; and with the
     specimen's own DFN (DEM Fractures To DFN): its disc area and sets;
 (d) close-up rendering: true spheres (3D Glyphs), without and with the shadow-map pass;
-    the pictures are not blank;
+    the pictures are not blank; a ball above a floor darkens the floor where its shadow
+    falls (rockdem.enable_shadows);
 (e) bad input: a plane that misses the model (empty, a message, no error), Voxel Size 0,
     a grid over the Memory Limit (errors naming value and limit, no output).
 """
@@ -61,6 +62,17 @@ def not_blank(path, min_fraction=0.02):
     differ = sum(1 for i in range(0, n, 7) if pixels.GetTuple(i)[:3] != background[:3])
     fraction = differ * 7.0 / n
     return fraction >= min_fraction, fraction
+
+
+def pixel_brightness(path, points):
+    """Mean of R, G, B (0-255) of the picture's pixels at display points (x, y)."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    pixels = reader.GetOutput().GetPointData().GetScalars()
+    nx = reader.GetOutput().GetDimensions()[0]
+    return [sum(pixels.GetTuple(int(round(y)) * nx + int(round(x)))[:3]) / 3.0 for x, y in points]
 
 
 # The failed specimen (as Testing/Python/test_fractures.py, smaller).
@@ -146,6 +158,7 @@ scene.Play()
 print("played, elapsed %.1f s" % (time.time() - T0))
 c.check(abs(section.GetDataInformation().DataInformation.GetTime() - t_stop) < 1e-12,
         "Play over the last frames leaves the section at the last frame")
+GetDisplayProperties(section, view).RescaleTransferFunctionToDataRange(False, True)  # the last frame's stresses
 ResetCamera(view)
 picture = os.path.join(pictures, "section.png")
 SaveScreenshot(picture, view, ImageResolution=[500, 500])
@@ -255,6 +268,36 @@ for shadows in (False, True):
     ok, fraction = not_blank(picture)
     c.check(ok, "true spheres%s render (%.0f %% of the picture drawn): %s" % (
         " with shadows" if shadows else "", 100 * fraction, picture))
+
+# Shadows are cast: a ball above a floor, lit by enable_shadows from the +X side above.
+# Looking straight down, the floor where the ball's shadow falls (x < 0) is dark, its
+# mirror image (x > 0) lit; with the ball hidden both are lit alike.
+view4 = CreateRenderView(ViewSize=[400, 400])
+view4.OrientationAxesVisibility = 0
+floor = Show(Plane(Origin=[-0.04, -0.04, 0], Point1=[0.04, -0.04, 0], Point2=[-0.04, 0.04, 0]), view4)
+floor.ColorArrayName = ["POINTS", ""]
+ball = Show(Sphere(Center=[0, 0, 0.01], Radius=0.004, ThetaResolution=32, PhiResolution=32), view4)
+ball.ColorArrayName = ["POINTS", ""]
+view4.CameraPosition = [0, 0, 0.3]
+view4.CameraFocalPoint = [0, 0, 0]
+view4.CameraViewUp = [0, 1, 0]
+view4.CameraParallelProjection = 1
+ResetCamera(view4)
+rockdem.enable_shadows(view4, direction=(1.0, 0.0, 1.0))
+probes = []
+for x in (-0.0105, 0.0105):  # the centre of the ball's shadow on the floor, and its mirror image
+    view4.GetRenderer().SetWorldPoint(x, 0.0, 0.0, 1.0)
+    view4.GetRenderer().WorldToDisplay()
+    probes.append(view4.GetRenderer().GetDisplayPoint()[:2])
+brightness = []
+for visible in (1, 0):
+    ball.Visibility = visible
+    picture = os.path.join(pictures, "shadow_probe%s.png" % ("" if visible else "_no_ball"))
+    SaveScreenshot(picture, view4, ImageResolution=[400, 400])
+    brightness.append(pixel_brightness(picture, probes))
+c.check(brightness[0][0] < 0.7 * brightness[0][1] and brightness[1][0] > 0.9 * brightness[1][1],
+        "a ball casts its shadow on the floor: brightness %.0f in its shadow, %.0f opposite; %.0f and %.0f "
+        "without the ball" % (brightness[0][0], brightness[0][1], brightness[1][0], brightness[1][1]))
 
 # (e) Bad input.
 section.Origin = [0.008, 0.5, 0.008]  # Section XZ: the plane y = 0.5 m
