@@ -5,6 +5,8 @@
 // the Bonded Coordination equals an independent count. SI units.
 #include "DynamicsFixtures.h"
 
+#include "BruteForce.h"
+
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
 #include "dem/Errors.h"
@@ -66,7 +68,8 @@ Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
   return s;
 }
 
-using IdPair = std::pair<std::int64_t, std::int64_t>;
+using bruteforce::IdPair;
+using bruteforce::bondPairs;
 
 /// All pairs bonded by the rule, by brute force over every pair: gap <= tolerance x the
 /// smaller radius, or (range > 1) centre distance <= range x (rA + rB). Pairs within a
@@ -96,14 +99,6 @@ void bruteForce(const Model& m, double tolerance, double range, std::vector<IdPa
   std::sort(ambiguous.begin(), ambiguous.end());
 }
 
-std::vector<IdPair> bondPairs(const Bonds& b)
-{
-  std::vector<IdPair> out;
-  for (std::size_t k = 0; k < b.size(); ++k) {
-    out.emplace_back(b.idA[k], b.idB[k]);
-  }
-  return out;
-}
 
 std::vector<IdPair> withoutAmbiguous(const std::vector<IdPair>& got, const std::vector<IdPair>& ambiguous)
 {
