@@ -38,11 +38,11 @@ MODULUS = 1e8          # Pa: grain Young's modulus and Bond Modulus (soft: a lon
 TARGET_POROSITY = 0.37  # Compact Elements' target (a walled specimen this small jams near 0.39)
 BOND_RANGE = 1.4       # x (rA + rB): bonded coordination about 11 (Scholtes & Donze 2013)
 MOMENT_CONTRIBUTION = 1.0  # beta: the full bond moments in the failure stresses (Potyondy & Cundall)
-TENSILE = 1e6          # Pa: bond tensile strength
-COHESION = 4e6         # Pa: bond cohesion
+TENSILE = 3e5          # Pa: bond tensile strength (Rock.md: the specimen fails near 2.3 % strain)
+COHESION = 6e5         # Pa: bond cohesion
 STRAIN_PER_STEP = 1e-6  # platen strain per timestep (sets the strain rate; Rock.md)
-MAX_STRAIN = 0.025     # compression: past the peak (about 1.8 %) and its fall to 70 %
-TENSION_MAX_STRAIN = 0.002  # direct tension: the peak is near 0.04 %
+MAX_STRAIN = 0.03      # compression: past the peak (about 2.3 %) and its fall to 70 %
+TENSION_MAX_STRAIN = 0.005  # direct tension: the peak is near 0.16 %; stops once fallen to half
 
 
 def plugin_path():
@@ -165,7 +165,7 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     lap("cement + relax")
     # 3. unconfined compression along Z at STRAIN_PER_STEP per timestep.
     rate = STRAIN_PER_STEP / timestep
-    frames = 25 if args.elements >= 4000 else 10
+    frames = 30 if args.elements >= 4000 else 10
     history_file = os.path.join(args.output, "history.csv")
 
     def progress(k, lt):
