@@ -53,22 +53,8 @@ Model grownPack(bool planar, bool walled = false)
   return m;
 }
 
-/// Minimum-image separation b - a, written independently of the engine (IEEE remainder).
-Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
-{
-  Vec3 s = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (d.periodic[k]) {
-      s[k] = std::remainder(s[k], d.size[k]);
-    }
-  }
-  if (d.section2D) {
-    s.z() = 0.0;
-  }
-  return s;
-}
-
 using bruteforce::IdPair;
+using bruteforce::separation; // minimum image, written independently of the engine
 using bruteforce::bondPairs;
 
 /// All pairs bonded by the rule, by brute force over every pair: gap <= tolerance x the
