@@ -241,7 +241,7 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     t_dfn = min([t for t in frame_times if t >= t_dfn - 1e-12] or [frame_times[-1]])
     dfn = DEMFracturesToDFN(Input=press)
     dfn.UpdatePipeline(t_dfn)
-    print("DFN at t = %.4g s (%s): %s" % (t_dfn, "stress fallen to 70 %% of the peak" if after else "end of the test",
+    print("DFN at t = %.4g s (%s): %s" % (t_dfn, "stress fallen to 70 % of the peak" if after else "end of the test",
                                        rockdem.read_only(dfn, "LastMessage")), flush=True)
     dfn_csv = os.path.join(args.output, "dfn.csv")
     SaveData(dfn_csv, proxy=OutputPort(dfn, 1))
