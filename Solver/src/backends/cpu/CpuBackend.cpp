@@ -750,7 +750,7 @@ void CpuBackend::computeBondForces(bool incrementState)
       b.bendingMoment[k] = rotateIntoPlane(b.bendingMoment[k], normal) -
         kn * section.inertia * inPlane(relativeSpin, normal) * dt;
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
-        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
       const BondFailure failure =
         bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
       if (failure != BondFailure::Intact) {
