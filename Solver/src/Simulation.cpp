@@ -3,6 +3,7 @@
 #include "SlotLookup.h"
 #include "backends/ContactState.h"
 #include "backends/cpu/CpuBackend.h"
+#include "backends/vulkan/VulkanBackend.h"
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
 #include "dem/WallControl.h"
@@ -130,7 +131,7 @@ void resetWalls(Model& model)
   }
 }
 
-Simulation::Simulation(Model& model)
+Simulation::Simulation(Model& model, SolverDevice device)
   : model_(model)
 {
   validate(model.domain);
@@ -161,7 +162,16 @@ Simulation::Simulation(Model& model)
   }
   model.clock.timestep = timestep_;
 
-  backend_.reset(new CpuBackend(model, contactModel_, timestep_));
+  if (device == SolverDevice::GPU) {
+    try {
+      backend_.reset(new VulkanBackend(model, contactModel_, timestep_));
+    } catch (const vk::Unavailable& e) {
+      gpuFallbackReason_ = e.what();
+    }
+  }
+  if (!backend_) {
+    backend_.reset(new CpuBackend(model, contactModel_, timestep_));
+  }
   initialAvailableEnergy_ = availableEnergy();
 }
 
@@ -169,6 +179,9 @@ Simulation::~Simulation() = default;
 
 std::string Simulation::path() const
 {
+  if (!gpuFallbackReason_.empty()) {
+    return backend_->path() + ": GPU requested, fell back because " + gpuFallbackReason_;
+  }
   return backend_->path();
 }
 

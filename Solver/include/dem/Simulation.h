@@ -60,11 +60,18 @@ void validate(const SolverSettings& settings);
 /// at rest on the faces of the box.
 void resetWalls(Model& model);
 
+/// Where a Simulation steps: the CPU backend, or the GPU (Vulkan) backend when a device
+/// can run the model (else the CPU, and path() says why).
+enum class SolverDevice { CPU, GPU };
+
 class Simulation {
 public:
   /// Validates the model and settings, calibrates the contact damping, chooses the
   /// timestep and builds the neighbour list. Walls are created if the model has none.
-  explicit Simulation(Model& model);
+  /// SolverDevice::GPU runs the step on a Vulkan device when one can run the model (no
+  /// device, no double precision, too little memory: the CPU, see path()). Both give the
+  /// same bits on a device that rounds double precision as IEEE 754 (lavapipe does).
+  explicit Simulation(Model& model, SolverDevice device = SolverDevice::CPU);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -78,8 +85,11 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial" or "CPU OpenMP (N threads)".
+  /// Which path runs: "CPU serial", "CPU OpenMP (N threads)", "GPU Vulkan: <device>", or
+  /// after a fallback "CPU OpenMP (N threads): GPU requested, fell back because <reason>".
   std::string path() const;
+  /// Why the GPU was requested but not used (empty otherwise).
+  const std::string& gpuFallbackReason() const { return gpuFallbackReason_; }
   const ContactModel& contactModel() const { return contactModel_; }
 
   Diagnostics diagnostics() const;
@@ -107,6 +117,7 @@ private:
   double critical_ = 0.0;
   double timestep_ = 0.0;
   std::string timestepMessage_;
+  std::string gpuFallbackReason_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
   bool broken_ = false;                 ///< an instability stopped the run
 };
