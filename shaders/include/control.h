@@ -21,8 +21,9 @@
 #define CTL_FIRST_ESCAPED 14u  // stability: first of them (or ~0u)
 #define CTL_COUNT 16u
 
-#define HALT_PAIRS 1u
-#define HALT_WALLS 2u
+#define HALT_PAIRS 1u          // the new pair list does not fit: grow, resume at the rebuild
+#define HALT_WALLS 2u          // the new wall list does not fit: grow, resume at the rebuild
+#define HALT_REBUILD 3u        // this step needs a rebuild: resume at the rebuild
 
 #define MODE_NONE 0u
 #define MODE_FULL 1u

@@ -2,8 +2,10 @@
 // RockDEM step, part 2 (one invocation): wall control (dem::controlWalls: servo law,
 // platen, at rest), wall motion, and what to rebuild this step (CpuBackend::step: the
 // neighbour list when a particle moved half the skin, else the wall list when a wall moved
-// half the skin or was switched on or off); writes the indirect dispatch arguments of the
-// rebuild kernels (zero workgroups when there is nothing to rebuild).
+// half the skin or was switched on or off). A step that needs a rebuild halts the
+// submission (HALT_REBUILD) with the indirect dispatch arguments of the rebuild kernels
+// written: the host resumes it at its rebuild. Steps without one (most of them) then cost
+// six dispatches.
 #include "geometry.glsl"
 #include "servo_law.glsl"
 layout(local_size_x = 1) in;
@@ -87,4 +89,7 @@ void main()
   setGroups(p, IND_WALL_SCAN, walls ? scanBlocks : 0u);
   setGroups(p, IND_WALL_ONE, walls ? 1u : 0u);
   setItems(p, IND_WALL_COPY, 0u);  // set by the capacity check
+  if (mode != MODE_NONE) {
+    p.ctl.v[CTL_HALTED] = HALT_REBUILD;
+  }
 }

@@ -91,6 +91,7 @@ std::uint32_t groupsFor(std::uint64_t items, std::uint32_t size)
 constexpr std::uint32_t kGroupSize = GROUP_SIZE;
 constexpr std::uint32_t kDispatchX = DISPATCH_X;
 constexpr std::uint64_t kStagingBytes = 32ull << 20;
+constexpr std::int64_t kMaxStepsPerSubmission = 64;
 
 struct PushParams {
   std::uint64_t params;
@@ -166,7 +167,8 @@ struct VulkanBackend::Array {
 // ---------------------------------------------------------------------------------------
 // Set-up
 
-VulkanBackend::VulkanBackend(Model& model, const ContactModel& contactModel, double timestep)
+VulkanBackend::VulkanBackend(Model& model, const ContactModel& contactModel, double timestep,
+                             bool tightLists)
   : model_(model)
   , contactModel_(contactModel)
   , timestep_(timestep)
@@ -186,8 +188,8 @@ VulkanBackend::VulkanBackend(Model& model, const ContactModel& contactModel, dou
   pairs_ = static_cast<std::uint32_t>(st.pairI.size());
   adjacency_ = static_cast<std::uint32_t>(st.adjacency.size());
   wallEntries_ = static_cast<std::uint32_t>(st.wallSlot.size());
-  pairCapacity_ = pairs_ + pairs_ / 4 + n_ / 2 + 1024;
-  wallCapacity_ = wallEntries_ + wallEntries_ / 4 + n_ / 16 + 256;
+  pairCapacity_ = tightLists ? pairs_ + 1 : pairs_ + pairs_ / 4 + n_ / 2 + 1024;
+  wallCapacity_ = tightLists ? wallEntries_ + 1 : wallEntries_ + wallEntries_ / 4 + n_ / 16 + 256;
 
   // Parameters that stay for the run.
   vk::Params& q = params_;
@@ -259,16 +261,27 @@ VulkanBackend::VulkanBackend(Model& model, const ContactModel& contactModel, dou
   }
   sortPasses_ = (bits + 3) / 4;
   sortPasses_ += sortPasses_ % 2; // an even number of passes leaves the result in keysA
-  allocate();
-  upload();
+  try {
+    allocate();
+    upload();
+  } catch (...) {
+    release(); // a failed allocation leaves nothing behind on the device
+    throw;
+  }
 }
 
 VulkanBackend::~VulkanBackend()
+{
+  release();
+}
+
+void VulkanBackend::release()
 {
   if (device_) {
     for (Array& a : arrays_) {
       device_->destroy(a.buffer);
     }
+    arrays_.clear();
     device_->destroy(paramsBuffer_);
     device_->destroy(staging_);
   }
@@ -310,11 +323,20 @@ void VulkanBackend::allocate()
   }
   const std::uint64_t budget = device_->memoryBytes() / 10 * 9;
   if (total > budget) {
-    std::ostringstream msg;
-    msg << "too little device memory: the model needs " << (total >> 20) << " MiB, "
-        << device_->name() << " has " << (device_->memoryBytes() >> 20) << " MiB";
-    throw vk::Unavailable(msg.str());
+    auto size = [](std::uint64_t bytes) {
+      std::ostringstream out;
+      if (bytes < (1ull << 20)) {
+        out << (bytes + 1023) / 1024 << " KiB";
+      } else {
+        out << (bytes + (1ull << 19)) / (1ull << 20) << " MiB";
+      }
+      return out.str();
+    };
+    throw vk::Unavailable("too little device memory: the model needs " + size(total) + ", " +
+                          device_->name() + " has " + size(device_->memoryBytes()) +
+                          " (a run may use 90 % of it)");
   }
+  arrays_.reserve(std::size(kArrays));
   for (const ArraySpec& spec : kArrays) {
     Array a;
     a.spec = spec;
@@ -356,27 +378,33 @@ void VulkanBackend::grow(bool pairs, bool walls, std::uint32_t neededPairs, std:
     throw std::runtime_error("GPU solver: the neighbour list outgrew 32-bit indices; run on the CPU.");
   }
   Sizes s{ n_, newPairs, newWalls, bonds_, params_.totalCells, params_.sortTiles, 0, 0, rolling_ };
-  std::vector<vk::Buffer> old;
+  // The bigger buffers first (nothing changes if one cannot be had), then the live lists
+  // copied into them.
+  std::vector<std::pair<Array*, vk::Buffer>> bigger;
   try {
-    device_->submit([&](VkCommandBuffer cb) {
-      for (Array& a : arrays_) {
-        const Group g = groupOf(a.spec.count);
-        if ((g == Group::Pairs && pairs) || (g == Group::Walls && walls)) {
-          vk::Buffer bigger = device_->createBuffer(elements(a.spec.count, s) * a.spec.elementBytes);
-          VkBufferCopy region{ 0, 0, std::min(a.buffer.bytes, bigger.bytes) };
-          device_->api().vkCmdCopyBuffer(cb, a.buffer.buffer, bigger.buffer, 1, &region);
-          old.push_back(a.buffer);
-          a.buffer = bigger;
-          params_.*(a.member) = a.buffer.address;
-        }
+    for (Array& a : arrays_) {
+      const Group g = groupOf(a.spec.count);
+      if ((g == Group::Pairs && pairs) || (g == Group::Walls && walls)) {
+        bigger.emplace_back(&a, device_->createBuffer(elements(a.spec.count, s) * a.spec.elementBytes));
       }
-    });
+    }
   } catch (const vk::Unavailable& e) {
+    for (auto& b : bigger) {
+      device_->destroy(b.second);
+    }
     throw std::runtime_error(std::string("GPU solver: growing the contact lists failed (") + e.what() +
                              "); run on the CPU (GPU Solver off).");
   }
-  for (vk::Buffer& b : old) {
-    device_->destroy(b);
+  device_->submit([&](VkCommandBuffer cb) {
+    for (auto& b : bigger) {
+      VkBufferCopy region{ 0, 0, std::min(b.first->buffer.bytes, b.second.bytes) };
+      device_->api().vkCmdCopyBuffer(cb, b.first->buffer.buffer, b.second.buffer, 1, &region);
+    }
+  });
+  for (auto& b : bigger) {
+    device_->destroy(b.first->buffer);
+    b.first->buffer = b.second;
+    params_.*(b.first->member) = b.second.address;
   }
   pairCapacity_ = static_cast<std::uint32_t>(newPairs);
   wallCapacity_ = static_cast<std::uint32_t>(newWalls);
@@ -769,16 +797,17 @@ void VulkanBackend::download()
   model_.clock.time = clock[CLOCK_TIME];
 }
 
-void VulkanBackend::readControl(std::uint32_t* ctl)
+void VulkanBackend::recordControlReadback(VkCommandBuffer cb)
 {
-  const vk::Buffer* control = control_;
-  const vk::Buffer* clock = clock_;
-  device_->submit([&](VkCommandBuffer cb) {
-    VkBufferCopy c{ 0, 0, CTL_COUNT * 4 };
-    device_->api().vkCmdCopyBuffer(cb, control->buffer, staging_.buffer, 1, &c);
-    VkBufferCopy t{ 0, 256, 32 };
-    device_->api().vkCmdCopyBuffer(cb, clock->buffer, staging_.buffer, 1, &t);
-  });
+  // The counters and the clock to the start of the staging buffer.
+  VkBufferCopy c{ 0, 0, CTL_COUNT * 4 };
+  device_->api().vkCmdCopyBuffer(cb, control_->buffer, staging_.buffer, 1, &c);
+  VkBufferCopy t{ 0, 256, 32 };
+  device_->api().vkCmdCopyBuffer(cb, clock_->buffer, staging_.buffer, 1, &t);
+}
+
+void VulkanBackend::readControlReadback(std::uint32_t* ctl)
+{
   std::memcpy(ctl, staging_.mapped, CTL_COUNT * 4);
   double time = 0.0;
   std::memcpy(&time, static_cast<const char*>(staging_.mapped) + 256 + 8 * CLOCK_TIME, 8);
@@ -788,11 +817,21 @@ void VulkanBackend::readControl(std::uint32_t* ctl)
 // ---------------------------------------------------------------------------------------
 // Recording
 
+const vk::Pipeline& VulkanBackend::pipeline(const char* kernel, std::uint32_t pushBytes)
+{
+  // Kernel names are string literals: their addresses identify them.
+  auto found = pipelines_.find(kernel);
+  if (found == pipelines_.end()) {
+    found = pipelines_.emplace(kernel, &device_->pipeline(shaders::module(kernel), pushBytes)).first;
+  }
+  return *found->second;
+}
+
 void VulkanBackend::dispatch(VkCommandBuffer cb, const char* kernel, const void* push,
                              std::uint32_t pushBytes, std::uint32_t groupsX, std::uint32_t groupsY)
 {
   const vk::Api& api = device_->api();
-  const vk::Pipeline& pl = device_->pipeline(shaders::module(kernel), pushBytes);
+  const vk::Pipeline& pl = pipeline(kernel, pushBytes);
   api.vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pl.pipeline);
   api.vkCmdPushConstants(cb, pl.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
   api.vkCmdDispatch(cb, groupsX, groupsY, 1);
@@ -803,7 +842,7 @@ void VulkanBackend::dispatchIndirect(VkCommandBuffer cb, const char* kernel, con
                                      std::uint32_t pushBytes, std::uint32_t slot)
 {
   const vk::Api& api = device_->api();
-  const vk::Pipeline& pl = device_->pipeline(shaders::module(kernel), pushBytes);
+  const vk::Pipeline& pl = pipeline(kernel, pushBytes);
   api.vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pl.pipeline);
   api.vkCmdPushConstants(cb, pl.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
   api.vkCmdDispatchIndirect(cb, indirect_->buffer, 4 * slot);
@@ -877,7 +916,9 @@ void VulkanBackend::recordSteps(VkCommandBuffer cb, std::int64_t steps, bool res
       dispatchItems(cb, "kick_drift", n_);
       dispatch(cb, "control", &push, sizeof(push), 1);
     }
-    recordRebuild(cb);
+    if (s == 0 && resumeAtRebuild) {
+      recordRebuild(cb);
+    }
     dispatchIndirect(cb, "pair_forces", &push, sizeof(push), IND_PAIRS);
     if (bonds_ > 0) {
       dispatchItems(cb, "bond_forces", bonds_);
@@ -911,19 +952,23 @@ void VulkanBackend::run(std::int64_t steps)
   std::int64_t remaining = steps;
   bool resume = false;
   const vk::Api& api = device_->api();
-  const vk::Buffer* control = control_;
   while (remaining > 0) {
-    std::uint32_t ctl[CTL_COUNT];
+    // Steps per submission follow the rebuild interval: a submission that halts for a
+    // rebuild after d steps is followed by ones of about d + 1 steps (the halted rest of a
+    // command buffer still costs its empty dispatches); one that completes doubles.
+    const std::int64_t submitted = std::min(remaining, batch_);
     VkCommandBuffer cb = device_->begin();
     api.vkCmdUpdateBuffer(cb, paramsBuffer_.buffer, 0, sizeof(vk::Params), &params_);
     // A new submission: no step done, not halted.
-    api.vkCmdFillBuffer(cb, control->buffer, 4 * CTL_HALTED, 4, 0);
-    api.vkCmdFillBuffer(cb, control->buffer, 4 * CTL_STEPS_DONE, 4, 0);
-    api.vkCmdFillBuffer(cb, control->buffer, 4 * CTL_REBUILDS, 4, 0);
+    api.vkCmdFillBuffer(cb, control_->buffer, 4 * CTL_HALTED, 4, 0);
+    api.vkCmdFillBuffer(cb, control_->buffer, 4 * CTL_STEPS_DONE, 4, 0);
+    api.vkCmdFillBuffer(cb, control_->buffer, 4 * CTL_REBUILDS, 4, 0);
     device_->barrier(cb);
-    recordSteps(cb, remaining, resume);
+    recordSteps(cb, submitted, resume);
+    recordControlReadback(cb);
     device_->endSubmitWait(cb);
-    readControl(ctl);
+    std::uint32_t ctl[CTL_COUNT];
+    readControlReadback(ctl);
     const std::int64_t done = ctl[CTL_STEPS_DONE];
     rebuilds_ += ctl[CTL_REBUILDS];
     pairs_ = ctl[CTL_PAIRS];
@@ -931,14 +976,22 @@ void VulkanBackend::run(std::int64_t steps)
     wallEntries_ = ctl[CTL_WALL_ENTRIES];
     remaining -= done;
     resume = false;
-    if (ctl[CTL_HALTED] != 0) {
-      // A list outgrew its buffers at step `done` of the submission, before anything was
-      // overwritten: grow, and resume that step at its rebuild.
+    if (ctl[CTL_HALTED] == HALT_REBUILD) {
+      // Step `done` of the submission needs a rebuild (its kick, drift and wall control
+      // are done): resume it at its rebuild.
+      resume = true;
+      batch_ = std::max<std::int64_t>(4, std::min<std::int64_t>(kMaxStepsPerSubmission, done + 2));
+    } else if (ctl[CTL_HALTED] != 0) {
+      // A list outgrew its buffers at step `done`, before anything was overwritten: grow,
+      // and resume that step at its rebuild.
       grow(ctl[CTL_HALTED] == HALT_PAIRS, ctl[CTL_HALTED] == HALT_WALLS, ctl[CTL_NEED_PAIRS],
            ctl[CTL_NEED_WALLS]);
+      ++growths_;
       resume = true;
-    } else if (remaining != 0) {
+    } else if (done != submitted) {
       throw std::logic_error("VulkanBackend: a submission stopped without a reason");
+    } else {
+      batch_ = std::min<std::int64_t>(kMaxStepsPerSubmission, 2 * batch_);
     }
   }
   model_.clock.step += steps;
@@ -980,15 +1033,14 @@ StabilityReport VulkanBackend::stability()
       resultIndex = static_cast<std::uint32_t>(half * static_cast<std::uint64_t>(side));
       side = 1 - side;
     } while (count > 1);
-  });
-  std::uint32_t ctl[CTL_COUNT];
-  readControl(ctl);
-  double kinetic = 0.0;
-  device_->submit([&](VkCommandBuffer cb) {
-    VkBufferCopy c{ 8 * static_cast<std::uint64_t>(resultIndex), 0, 8 };
+    recordControlReadback(cb);
+    VkBufferCopy c{ 8 * static_cast<std::uint64_t>(resultIndex), 512, 8 };
     api.vkCmdCopyBuffer(cb, partialSums_->buffer, staging_.buffer, 1, &c);
   });
-  std::memcpy(&kinetic, staging_.mapped, 8);
+  std::uint32_t ctl[CTL_COUNT];
+  readControlReadback(ctl);
+  double kinetic = 0.0;
+  std::memcpy(&kinetic, static_cast<const char*>(staging_.mapped) + 512, 8);
   StabilityReport r;
   if (ctl[CTL_NONFINITE] != ~0u) {
     r.firstNonFinite = static_cast<long>(ctl[CTL_NONFINITE]);

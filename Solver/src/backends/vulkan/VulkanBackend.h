@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace dem {
@@ -39,7 +40,9 @@ public:
   /// Opens the device, builds the initial lists on the CPU and uploads the state. Throws
   /// vk::Unavailable (its what() is the reason, for the Solver Path) when the device cannot
   /// run this model: no device or feature, too little memory, a failed allocation.
-  VulkanBackend(Model& model, const ContactModel& contactModel, double timestep);
+  /// `tightLists` (tests): the pair and wall lists get no headroom, so that the first
+  /// growth of either makes the device halt and the host grow them.
+  VulkanBackend(Model& model, const ContactModel& contactModel, double timestep, bool tightLists = false);
   ~VulkanBackend() override;
 
   std::string path() const override;
@@ -51,15 +54,20 @@ public:
   std::uint64_t deviceBytes() const;
   /// Neighbour rebuilds done on the device so far.
   std::int64_t rebuilds() const { return rebuilds_; }
+  /// Times the device's pair or wall list outgrew its buffers and was grown.
+  std::int64_t growths() const { return growths_; }
 
 private:
   struct Array;
   void allocate();
+  void release();
   void grow(bool pairs, bool walls, std::uint32_t neededPairs, std::uint32_t neededWalls);
   void setStageParameters();
   void upload();
   void download();
-  void readControl(std::uint32_t* ctl);
+  void recordControlReadback(VkCommandBuffer cb);
+  void readControlReadback(std::uint32_t* ctl);
+  const vk::Pipeline& pipeline(const char* kernel, std::uint32_t pushBytes);
   void recordSteps(VkCommandBuffer cb, std::int64_t steps, bool resumeAtRebuild);
   void recordRebuild(VkCommandBuffer cb);
   void recordScan(VkCommandBuffer cb, std::uint64_t data, std::uint64_t result, std::uint32_t scanSlot,
@@ -95,6 +103,9 @@ private:
   std::uint32_t adjacency_ = 0;
   std::uint32_t wallEntries_ = 0;
   std::int64_t rebuilds_ = 0;
+  std::int64_t growths_ = 0;
+  std::int64_t batch_ = 16;       // steps per submission (follows the rebuild interval)
+  std::unordered_map<const char*, const vk::Pipeline*> pipelines_;
   bool rolling_ = false;
   bool synced_ = true;
 };
