@@ -237,6 +237,7 @@ vtkDEMLoadTest::vtkDEMLoadTest()
   , RequestedTimestep(0.0)
   , SettlingDamping(0.7)
   , Threads(0)
+  , GPUSolver(0)
   , CriticalTimestep(0.0)
   , Timestep(0.0)
   , CurrentPorosity(1.0)
@@ -431,7 +432,7 @@ int vtkDEMLoadTest::RequestData(
       {
         dem::startLoadTest(in.Model, press);
       }
-      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
       in.StepsPerFrame =
         std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
       in.Frame = 0;
@@ -442,6 +443,11 @@ int vtkDEMLoadTest::RequestData(
       if (!in.Simulation->timestepMessage().empty())
       {
         vtkWarningMacro(<< in.Simulation->timestepMessage());
+      }
+      if (!in.Simulation->gpuFallbackReason().empty())
+      {
+        vtkWarningMacro(<< "GPU Solver: running on the CPU because "
+                        << in.Simulation->gpuFallbackReason() << ".");
       }
       if (!in.GravityNote.empty())
       {
@@ -455,7 +461,7 @@ int vtkDEMLoadTest::RequestData(
       auto it = in.Checkpoints.upper_bound(frame);
       --it; // frame 0 is always kept
       in.Model = it->second;
-      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
       in.Frame = it->first;
       in.Failed = false;
     }
@@ -624,6 +630,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Gravity: " << this->Gravity[0] << " " << this->Gravity[1] << " "
      << this->Gravity[2] << " m/s^2\n";
   os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "GPUSolver: " << this->GPUSolver << "\n";
   os << indent << "Axis: " << this->Axis << "\n";
   os << indent << "ConfiningStress: " << this->ConfiningStress << " Pa\n";
   os << indent << "StrainRate: " << this->StrainRate << " 1/s\n";
