@@ -9,3 +9,9 @@ target_compile_options(rockdem_bench_solver PRIVATE
 # two-point sweep on reduced workloads. The real figures come from running it by hand.
 add_test(NAME BenchSolverSmoke COMMAND rockdem_bench_solver --quick)
 set_tests_properties(BenchSolverSmoke PROPERTIES TIMEOUT 60)
+# The GPU backend (lavapipe in CI) beside the CPU on a small cemented specimen under
+# compression (about 10 s); figures in Documentation/Benchmarks-GPU.md.
+add_test(NAME BenchSolverGpuSmoke COMMAND rockdem_bench_solver --sizes 2000 --steps 50
+         --packs cemented --backend cpu,gpu --threads 1)
+set_tests_properties(BenchSolverGpuSmoke PROPERTIES TIMEOUT 120 LABELS gpu
+  PASS_REGULAR_EXPRESSION "GPU Vulkan: .*device memory")

@@ -88,6 +88,8 @@ public:
   /// Which path runs: "CPU serial", "CPU OpenMP (N threads)", "GPU Vulkan: <device>", or
   /// after a fallback "CPU OpenMP (N threads): GPU requested, fell back because <reason>".
   std::string path() const;
+  /// Device memory the run holds (zero on the CPU).
+  DeviceMemory deviceMemory() const { return backend_->deviceMemory(); }
   /// Why the GPU was requested but not used (empty otherwise).
   const std::string& gpuFallbackReason() const { return gpuFallbackReason_; }
   const ContactModel& contactModel() const { return contactModel_; }

@@ -292,13 +292,34 @@ std::string VulkanBackend::path() const
   return "GPU Vulkan: " + device_->name();
 }
 
-std::uint64_t VulkanBackend::deviceBytes() const
+DeviceMemory VulkanBackend::deviceMemory() const
 {
-  std::uint64_t total = paramsBuffer_.bytes;
+  DeviceMemory m;
+  double particles = 0.0, bonds = 0.0, pairs = 0.0;
+  m.total = paramsBuffer_.bytes;
   for (const Array& a : arrays_) {
-    total += a.buffer.bytes;
+    m.total += a.buffer.bytes;
+    const double bytes = static_cast<double>(a.buffer.bytes);
+    switch (a.spec.count) {
+      case Count::Bonds: case Count::Bonds3: case Count::Bonds2:
+        bonds += bytes;
+        break;
+      case Count::Pairs: case Count::Pairs3: case Count::PairsRolling3: case Count::Adjacency:
+        pairs += bytes;
+        break;
+      case Count::Control: case Count::WallData: case Count::Clock: case Count::Indirect:
+      case Count::Walls: case Count::Walls3: case Count::WallsRolling3:
+        break; // fixed size, or the walls' contacts (a surface layer)
+      default:
+        particles += bytes; // per particle, and the grids and scan blocks that scale with it
+        break;
+    }
   }
-  return total;
+  m.perParticle = n_ ? particles / n_ : 0.0;
+  m.perBond = bonds_ ? bonds / bonds_ : 0.0;
+  m.perPair = pairCapacity_ ? pairs / pairCapacity_ : 0.0;
+  m.pairSlots = pairCapacity_;
+  return m;
 }
 
 void VulkanBackend::allocate()

@@ -50,8 +50,7 @@ public:
   const ContactState& sync() override;
   StabilityReport stability() override;
 
-  /// Device memory the state of this run occupies, bytes.
-  std::uint64_t deviceBytes() const;
+  DeviceMemory deviceMemory() const override;
   /// Neighbour rebuilds done on the device so far.
   std::int64_t rebuilds() const { return rebuilds_; }
   /// Times the device's pair or wall list outgrew its buffers and was grown.
