@@ -15,3 +15,14 @@ add_test(NAME BenchSolverGpuSmoke COMMAND rockdem_bench_solver --sizes 2000 --st
          --packs cemented --backend cpu,gpu --threads 1)
 set_tests_properties(BenchSolverGpuSmoke PROPERTIES TIMEOUT 120 LABELS gpu
   PASS_REGULAR_EXPRESSION "GPU Vulkan: .*device memory")
+
+# The press test on the CPU and the GPU, compared (scripts/gpu_check.sh runs it on an NVIDIA
+# device; Documentation/Benchmarks-GPU.md). Smoke run: a small specimen on lavapipe.
+add_executable(rockdem_gpu_parity gpu_parity.cpp)
+target_include_directories(rockdem_gpu_parity PRIVATE "${PROJECT_SOURCE_DIR}/Testing/Solver")
+target_link_libraries(rockdem_gpu_parity PRIVATE RockDEM::solver)
+target_compile_options(rockdem_gpu_parity PRIVATE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic>)
+add_test(NAME GpuParitySmoke COMMAND rockdem_gpu_parity --particles 300 --max-steps 1500)
+set_tests_properties(GpuParitySmoke PROPERTIES TIMEOUT 120 LABELS gpu
+  PASS_REGULAR_EXPRESSION "verdict: PASS \\(bitwise identical\\)")
