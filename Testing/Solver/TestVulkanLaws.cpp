@@ -14,9 +14,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -306,4 +308,60 @@ TEST(VulkanLaws, NoFloatingPointOperationMayBeFusedIntoAnFma)
     EXPECT_NE(std::find(decorated.begin(), decorated.end(), id), decorated.end()) << "result %" << id;
   }
   EXPECT_EQ(words.size(), m.count + 3 * decorated.size());
+}
+
+TEST(VulkanDevice, AnArrayLargerThanTheBindingRangeIsReachedWhole)
+{
+  // The backend reaches its arrays by buffer device address (GL_EXT_buffer_reference), so
+  // maxStorageBufferRange (128 MiB on lavapipe) does not cap an array: a kernel sums an
+  // array 1.25 x that size whose only non-zero element is its last.
+  const std::shared_ptr<dem::vk::Device> device = dem::vk::Device::open();
+  const std::uint64_t limit = device->maxStorageBufferRange();
+  ASSERT_GT(limit, 0u);
+  const std::uint32_t count = static_cast<std::uint32_t>(std::min<std::uint64_t>(limit / 8 + limit / 32, 1u << 28));
+  ASSERT_GT(8ull * count, limit);
+  dem::vk::Buffer data = device->createBuffer(8ull * count);
+  const std::uint64_t half = count / 1024 + 2; // partial sums: two halves, read one, write the other
+  dem::vk::Buffer sums = device->createBuffer(16ull * half);
+  dem::vk::Buffer staging = device->createStaging(16);
+  const double one = 1.0;
+  std::memcpy(staging.mapped, &one, 8);
+  struct Push {
+    std::uint64_t params, data, result;
+    std::uint32_t count, pad;
+  };
+  const dem::vk::Pipeline& reduce = device->pipeline(dem::shaders::module("reduce_sum"), sizeof(Push));
+  const dem::vk::Api& api = device->api();
+  device->submit([&](VkCommandBuffer cb) {
+    api.vkCmdFillBuffer(cb, data.buffer, 0, VK_WHOLE_SIZE, 0);
+    device->barrier(cb);
+    VkBufferCopy last{ 0, 8ull * (count - 1), 8 };
+    api.vkCmdCopyBuffer(cb, staging.buffer, data.buffer, 1, &last);
+    device->barrier(cb);
+    api.vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, reduce.pipeline);
+    std::uint64_t source = data.address;
+    std::uint32_t n = count;
+    bool first = true;
+    int side = 0;
+    while (first || n > 1) {
+      const std::uint32_t groups = (n + 1023) / 1024;
+      const std::uint64_t target = sums.address + 8ull * half * static_cast<std::uint64_t>(side);
+      side = 1 - side;
+      const Push push{ 0, source, target, n, 0 };
+      api.vkCmdPushConstants(cb, reduce.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &push);
+      api.vkCmdDispatch(cb, groups, 1, 1);
+      device->barrier(cb);
+      source = target;
+      n = groups;
+      first = false;
+    }
+    VkBufferCopy back{ source - sums.address, 0, 8 };
+    api.vkCmdCopyBuffer(cb, sums.buffer, staging.buffer, 1, &back);
+  });
+  double total = 0.0;
+  std::memcpy(&total, staging.mapped, 8);
+  EXPECT_EQ(total, 1.0) << "array of " << 8ull * count << " bytes, binding range " << limit;
+  device->destroy(data);
+  device->destroy(sums);
+  device->destroy(staging);
 }

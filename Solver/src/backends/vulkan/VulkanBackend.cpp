@@ -156,6 +156,57 @@ struct Transfer {
   std::uint64_t offset;
 };
 
+/// Moves the pieces between host and device arrays through the staging buffer, as many
+/// per submission as fit (a piece larger than the staging buffer goes in parts).
+void moveThroughStaging(vk::Device& device, vk::Buffer& staging, std::vector<Transfer>& items, bool toDevice)
+{
+  const std::uint64_t capacity = staging.bytes;
+  std::size_t next = 0;
+  std::uint64_t pieceOffset = 0;
+  while (next < items.size()) {
+    struct Part {
+      std::size_t item;
+      std::uint64_t hostOffset, stagingOffset, bytes;
+    };
+    std::vector<Part> parts;
+    std::uint64_t used = 0;
+    while (next < items.size() && used < capacity) {
+      const Transfer& t = items[next];
+      const std::uint64_t bytes = std::min(t.bytes - pieceOffset, capacity - used);
+      parts.push_back({ next, pieceOffset, used, bytes });
+      used += (bytes + 15) / 16 * 16;
+      pieceOffset += bytes;
+      if (pieceOffset == t.bytes) {
+        ++next;
+        pieceOffset = 0;
+      }
+    }
+    char* stage = static_cast<char*>(staging.mapped);
+    if (toDevice) {
+      for (const Part& p : parts) {
+        std::memcpy(stage + p.stagingOffset, static_cast<const char*>(items[p.item].host) + p.hostOffset, p.bytes);
+      }
+    }
+    device.submit([&](VkCommandBuffer cb) {
+      for (const Part& p : parts) {
+        const Transfer& t = items[p.item];
+        if (toDevice) {
+          const VkBufferCopy region{ p.stagingOffset, t.offset + p.hostOffset, p.bytes };
+          device.api().vkCmdCopyBuffer(cb, staging.buffer, t.buffer, 1, &region);
+        } else {
+          const VkBufferCopy region{ t.offset + p.hostOffset, p.stagingOffset, p.bytes };
+          device.api().vkCmdCopyBuffer(cb, t.buffer, staging.buffer, 1, &region);
+        }
+      }
+    });
+    if (!toDevice) {
+      for (const Part& p : parts) {
+        std::memcpy(static_cast<char*>(items[p.item].host) + p.hostOffset, stage + p.stagingOffset, p.bytes);
+      }
+    }
+  }
+}
+
 } // namespace
 
 struct VulkanBackend::Array {
@@ -484,6 +535,16 @@ bool VulkanBackend::servoNeedsParticles() const
 // ---------------------------------------------------------------------------------------
 // Transfers
 
+const vk::Buffer& VulkanBackend::array(const char* name) const
+{
+  for (const Array& a : arrays_) {
+    if (std::strcmp(a.spec.name, name) == 0) {
+      return a.buffer;
+    }
+  }
+  throw std::logic_error(std::string("VulkanBackend: no array ") + name);
+}
+
 namespace {
 template <class T> Transfer piece(std::vector<T>& v, const vk::Buffer& b, std::uint64_t count)
 {
@@ -493,14 +554,6 @@ template <class T> Transfer piece(std::vector<T>& v, const vk::Buffer& b, std::u
 
 void VulkanBackend::upload()
 {
-  auto buffer = [&](const char* name) -> const vk::Buffer& {
-    for (const Array& a : arrays_) {
-      if (std::strcmp(a.spec.name, name) == 0) {
-        return a.buffer;
-      }
-    }
-    throw std::logic_error(std::string("VulkanBackend: no array ") + name);
-  };
   Particles& p = model_.particles;
   ContactState& st = host_->state();
   Bonds& b = model_.bonds;
@@ -508,7 +561,7 @@ void VulkanBackend::upload()
   std::vector<Transfer> items;
   auto add = [&](auto& v, const char* name, std::uint64_t count) {
     if (count > 0) {
-      items.push_back(piece(v, buffer(name), count));
+      items.push_back(piece(v, array(name), count));
     }
   };
   add(p.position, "position", n);
@@ -641,46 +694,12 @@ void VulkanBackend::upload()
   add(clock, "clock", clock.size());
   add(indirect, "indirect", indirect.size());
 
-  // Through the staging buffer, as many pieces per submission as fit.
-  const std::uint64_t capacity = staging_.bytes;
-  std::size_t next = 0;
-  std::uint64_t pieceOffset = 0;
-  while (next < items.size()) {
-    std::uint64_t used = 0;
-    std::vector<VkBufferCopy> regions;
-    std::vector<VkBuffer> targets;
-    while (next < items.size() && used < capacity) {
-      Transfer& t = items[next];
-      const std::uint64_t bytes = std::min(t.bytes - pieceOffset, capacity - used);
-      std::memcpy(static_cast<char*>(staging_.mapped) + used, static_cast<const char*>(t.host) + pieceOffset, bytes);
-      regions.push_back({ used, t.offset + pieceOffset, bytes });
-      targets.push_back(t.buffer);
-      used += (bytes + 15) / 16 * 16;
-      pieceOffset += bytes;
-      if (pieceOffset == t.bytes) {
-        ++next;
-        pieceOffset = 0;
-      }
-    }
-    device_->submit([&](VkCommandBuffer cb) {
-      for (std::size_t r = 0; r < regions.size(); ++r) {
-        device_->api().vkCmdCopyBuffer(cb, staging_.buffer, targets[r], 1, &regions[r]);
-      }
-    });
-  }
+  moveThroughStaging(*device_, staging_, items, true);
   synced_ = true;
 }
 
 void VulkanBackend::download()
 {
-  auto buffer = [&](const char* name) -> const vk::Buffer& {
-    for (const Array& a : arrays_) {
-      if (std::strcmp(a.spec.name, name) == 0) {
-        return a.buffer;
-      }
-    }
-    throw std::logic_error(std::string("VulkanBackend: no array ") + name);
-  };
   Particles& p = model_.particles;
   ContactState& st = host_->state();
   Bonds& b = model_.bonds;
@@ -710,7 +729,7 @@ void VulkanBackend::download()
   std::vector<Transfer> items;
   auto add = [&](auto& v, const char* name, std::uint64_t count) {
     if (count > 0) {
-      items.push_back(piece(v, buffer(name), count));
+      items.push_back(piece(v, array(name), count));
     }
   };
   add(p.position, "position", n);
@@ -761,41 +780,7 @@ void VulkanBackend::download()
   add(walls, "walls", walls.size());
   add(clock, "clock", clock.size());
 
-  const std::uint64_t capacity = staging_.bytes;
-  std::size_t next = 0;
-  std::uint64_t pieceOffset = 0;
-  while (next < items.size()) {
-    struct Back {
-      std::size_t item;
-      std::uint64_t hostOffset, stagingOffset, bytes;
-    };
-    std::vector<Back> back;
-    std::vector<VkBufferCopy> regions;
-    std::vector<VkBuffer> sources;
-    std::uint64_t used = 0;
-    while (next < items.size() && used < capacity) {
-      Transfer& t = items[next];
-      const std::uint64_t bytes = std::min(t.bytes - pieceOffset, capacity - used);
-      regions.push_back({ t.offset + pieceOffset, used, bytes });
-      sources.push_back(t.buffer);
-      back.push_back({ next, pieceOffset, used, bytes });
-      used += (bytes + 15) / 16 * 16;
-      pieceOffset += bytes;
-      if (pieceOffset == t.bytes) {
-        ++next;
-        pieceOffset = 0;
-      }
-    }
-    device_->submit([&](VkCommandBuffer cb) {
-      for (std::size_t r = 0; r < regions.size(); ++r) {
-        device_->api().vkCmdCopyBuffer(cb, sources[r], staging_.buffer, 1, &regions[r]);
-      }
-    });
-    for (const Back& k : back) {
-      std::memcpy(static_cast<char*>(items[k.item].host) + k.hostOffset,
-                  static_cast<const char*>(staging_.mapped) + k.stagingOffset, k.bytes);
-    }
-  }
+  moveThroughStaging(*device_, staging_, items, false);
   // Back into the CPU layout.
   st.adjacencyStart.assign(adjacencyStart.begin(), adjacencyStart.end());
   st.adjacency.assign(adjacency.begin(), adjacency.end());

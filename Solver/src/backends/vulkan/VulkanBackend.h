@@ -62,6 +62,7 @@ private:
   void release();
   void grow(bool pairs, bool walls, std::uint32_t neededPairs, std::uint32_t neededWalls);
   void setStageParameters();
+  const vk::Buffer& array(const char* name) const;
   void upload();
   void download();
   void recordControlReadback(VkCommandBuffer cb);

@@ -235,6 +235,7 @@ void Device::create()
     queueFamily_ = static_cast<std::uint32_t>(compute);
     name_ = props.deviceName;
     maxGroupsX_ = props.limits.maxComputeWorkGroupCount[0];
+    maxStorageRange_ = props.limits.maxStorageBufferRange;
     break;
   }
   if (physical_ == VK_NULL_HANDLE) {

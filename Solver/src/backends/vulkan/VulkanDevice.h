@@ -99,6 +99,9 @@ public:
   /// Largest single allocation, bytes.
   std::uint64_t maxAllocationBytes() const { return maxAllocation_; }
   std::uint32_t maxWorkgroupsX() const { return maxGroupsX_; }
+  /// The largest range of one storage-buffer binding (which addressing by device address
+  /// does not need to respect), bytes.
+  std::uint64_t maxStorageBufferRange() const { return maxStorageRange_; }
 
   /// A device-local buffer of `bytes` (at least 16). Throws Unavailable when the device
   /// is out of memory.
@@ -142,6 +145,7 @@ private:
   std::uint64_t memoryBytes_ = 0;
   std::uint64_t maxAllocation_ = 0;
   std::uint32_t maxGroupsX_ = 65535;
+  std::uint64_t maxStorageRange_ = 0;
   std::int64_t allocations_ = 0;
   std::int64_t failAllocation_ = 0;
   std::map<std::string, Pipeline> pipelines_;
