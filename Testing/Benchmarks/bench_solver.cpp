@@ -544,7 +544,9 @@ int runThroughput(const Options& o)
         if (report.saturated) {
           std::printf("  note: %s\n", report.summary().c_str());
         }
-        if (gpu) {
+        if (gpu && device.total == 0) {
+          std::printf("  %s\n", fullPath.c_str());
+        } else if (gpu) {
           std::printf("  %s; device memory %.0f MiB: %.0f B/particle, %.0f B per pair slot (%.1f slots/particle), "
                       "%.0f B/bond (%zu bonds)\n",
                       fullPath.c_str(), device.total / 1048576.0, device.perParticle, device.perPair,

@@ -16,7 +16,19 @@
 #include <stdexcept>
 
 namespace dem {
+namespace vk {
+/// A piece of a host array to move to or from a device array.
+struct Transfer {
+  void* host;
+  std::uint64_t bytes;
+  VkBuffer buffer;
+  std::uint64_t offset;
+};
+} // namespace vk
+
 namespace {
+
+using vk::Transfer;
 
 /// How many elements an array holds, in terms of the model's sizes.
 enum class Count {
@@ -148,13 +160,6 @@ std::uint64_t elements(Count c, const Sizes& s)
   return 0;
 }
 
-/// A piece of a host array to move to or from a device array.
-struct Transfer {
-  void* host;
-  std::uint64_t bytes;
-  VkBuffer buffer;
-  std::uint64_t offset;
-};
 
 /// Moves the pieces between host and device arrays through the staging buffer, as many
 /// per submission as fit (a piece larger than the staging buffer goes in parts).
@@ -552,154 +557,16 @@ template <class T> Transfer piece(std::vector<T>& v, const vk::Buffer& b, std::u
 }
 } // namespace
 
-void VulkanBackend::upload()
-{
-  Particles& p = model_.particles;
-  ContactState& st = host_->state();
-  Bonds& b = model_.bonds;
-  const std::size_t n = n_;
-  std::vector<Transfer> items;
-  auto add = [&](auto& v, const char* name, std::uint64_t count) {
-    if (count > 0) {
-      items.push_back(piece(v, array(name), count));
-    }
-  };
-  add(p.position, "position", n);
-  add(p.velocity, "velocity", n);
-  add(p.angularVelocity, "angularVelocity", n);
-  add(p.displacement, "displacement", n);
-  add(p.force, "force", n);
-  add(p.torque, "torque", n);
-  add(st.undampedForce, "undampedForce", n);
-  add(st.positionAtBuild, "positionAtBuild", n);
-  add(p.radius, "radius", n);
-  add(p.mass, "mass", n);
-  add(p.inertia, "inertia", n);
-  add(st.inverseMass, "inverseMass", n);
-  add(st.inverseInertia, "inverseInertia", n);
-  add(p.flags, "flags", n);
-  std::vector<std::uint32_t> sizeClass(n);
-  const double rmin = st.smallestRadius;
-  for (std::size_t i = 0; i < n; ++i) {
-    sizeClass[i] = static_cast<std::uint32_t>(sizeClassOf(p.radius[i], rmin));
-  }
-  add(sizeClass, "sizeClass", n);
-  // Pairs: the CSR of the pair list, and the gather lists in 32 bits.
-  std::vector<std::uint32_t> pairStart(n + 1, 0);
-  for (std::uint32_t i : st.pairI) {
-    ++pairStart[i + 1];
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    pairStart[i + 1] += pairStart[i];
-  }
-  std::vector<std::uint32_t> adjacencyStart(st.adjacencyStart.begin(), st.adjacencyStart.end());
-  std::vector<std::uint32_t> adjacency(st.adjacency.begin(), st.adjacency.end());
-  std::vector<std::uint32_t> partners(adjacency.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t e = st.adjacencyStart[i]; e < st.adjacencyStart[i + 1]; ++e) {
-      const std::size_t k = st.adjacency[e] >> 1;
-      partners[e] = (st.adjacency[e] & 1u) ? st.pairI[k] : st.pairJ[k];
-    }
-  }
-  add(pairStart, "pairStart", n + 1);
-  add(adjacencyStart, "adjacencyStart", n + 1);
-  add(adjacency, "adjacency", adjacency.size());
-  add(partners, "partners", partners.size());
-  add(st.pairI, "pairI", pairs_);
-  add(st.pairJ, "pairJ", pairs_);
-  add(st.pairConstants, "pairConstants", pairs_);
-  add(st.pairSpring, "pairSpring", pairs_);
-  if (rolling_) {
-    add(st.pairRolling, "pairRolling", pairs_);
-  }
-  add(st.pairForce, "pairForce", pairs_);
-  add(st.pairTorqueI, "pairTorqueI", pairs_);
-  add(st.pairTorqueJ, "pairTorqueJ", pairs_);
-  add(st.pairNormal, "pairNormal", pairs_);
-  // Walls entries.
-  std::vector<std::uint32_t> wallIndex(st.wallIndex.begin(), st.wallIndex.end());
-  std::vector<std::uint32_t> wallTouching(st.wallTouching.begin(), st.wallTouching.end());
-  add(st.wallStart, "wallStart", n + 1);
-  add(st.wallSlot, "wallSlot", wallEntries_);
-  add(wallIndex, "wallIndex", wallEntries_);
-  add(wallTouching, "wallTouching", wallEntries_);
-  add(st.wallConstants, "wallConstants", wallEntries_);
-  add(st.wallSpring, "wallSpring", wallEntries_);
-  if (rolling_) {
-    add(st.wallRolling, "wallRolling", wallEntries_);
-  }
-  add(st.wallForce, "wallForce", wallEntries_);
-  add(st.wallNormal, "wallNormal", wallEntries_);
-  add(st.wallStiffness, "wallStiffness", wallEntries_);
-  add(st.wallElastic, "wallElastic", wallEntries_);
-  // Bonds.
-  std::vector<double> tanFriction(bonds_);
-  for (std::size_t k = 0; k < bonds_; ++k) {
-    tanFriction[k] = std::tan(b.frictionAngle[k]); // as dem::bondFailure computes it
-  }
-  std::vector<std::uint32_t> failure(b.failure.begin(), b.failure.end());
-  std::vector<std::uint32_t> bondAdjacencyStart(st.bondAdjacencyStart.begin(), st.bondAdjacencyStart.end());
-  std::vector<std::uint32_t> bondAdjacency(st.bondAdjacency.begin(), st.bondAdjacency.end());
-  add(st.bondI, "bondI", bonds_);
-  add(st.bondJ, "bondJ", bonds_);
-  add(b.radius, "bondRadius", bonds_);
-  add(b.normalStiffness, "bondKn", bonds_);
-  add(b.shearStiffness, "bondKs", bonds_);
-  add(b.tensileStrength, "bondTensileStrength", bonds_);
-  add(b.cohesion, "bondCohesion", bonds_);
-  add(tanFriction, "bondTanFriction", bonds_);
-  add(b.normalForce, "bondNormalForce", bonds_);
-  add(b.shearForce, "bondShearForce", bonds_);
-  add(b.twistingMoment, "bondTwistingMoment", bonds_);
-  add(b.bendingMoment, "bondBendingMoment", bonds_);
-  add(failure, "bondFailure", bonds_);
-  add(b.failureTime, "bondFailureTime", bonds_);
-  add(b.failurePosition, "bondFailurePosition", bonds_);
-  add(b.failureNormal, "bondFailureNormal", bonds_);
-  add(st.bondForce, "bondForce", bonds_);
-  add(st.bondTorqueI, "bondTorqueI", bonds_);
-  add(st.bondTorqueJ, "bondTorqueJ", bonds_);
-  add(bondAdjacencyStart, "bondAdjacencyStart", bonds_ ? n + 1 : 0);
-  add(bondAdjacency, "bondAdjacency", bondAdjacency.size());
-  // Control: counts, walls, clock, the pair kernel's dispatch.
-  std::vector<std::uint32_t> ctl(CTL_COUNT, 0);
-  ctl[CTL_PAIRS] = pairs_;
-  ctl[CTL_ADJACENCY] = adjacency_;
-  ctl[CTL_WALL_ENTRIES] = wallEntries_;
-  std::vector<double> walls(6 * WALL_STRIDE, 0.0);
-  for (int w = 0; w < 6; ++w) {
-    const Wall& wall = model_.walls[w];
-    double* x = &walls[WALL_STRIDE * w];
-    x[WALL_POSITION] = wall.position;
-    x[WALL_VELOCITY] = wall.velocity;
-    x[WALL_ACTIVE] = wall.active ? 1.0 : 0.0;
-    x[WALL_FORCE] = wall.force.x();
-    x[WALL_FORCE + 1] = wall.force.y();
-    x[WALL_FORCE + 2] = wall.force.z();
-    x[WALL_STIFFNESS] = wall.contactStiffness;
-    x[WALL_ELASTIC] = wall.elasticForce;
-    x[WALL_CONTACTS] = static_cast<double>(wall.contacts);
-    x[WALL_POSITION_AT_BUILD] = st.wallPositionAtBuild[w];
-    x[WALL_ACTIVE_AT_BUILD] = st.wallActiveAtBuild[w] ? 1.0 : 0.0;
-  }
-  std::vector<double> clock(4, 0.0);
-  clock[CLOCK_TIME] = model_.clock.time;
-  std::vector<std::uint32_t> indirect(IND_COUNT, 0);
-  const std::uint32_t groups = groupsFor(pairs_, kGroupSize);
-  indirect[IND_PAIRS] = std::min(groups, kDispatchX);
-  indirect[IND_PAIRS + 1] = groups ? groupsFor(groups, kDispatchX) : 0;
-  indirect[IND_PAIRS + 2] = 1;
-  add(ctl, "ctl", ctl.size());
-  add(walls, "walls", walls.size());
-  add(clock, "clock", clock.size());
-  add(indirect, "indirect", indirect.size());
+/// Host arrays whose device copies have another element type (32-bit indices and flags),
+/// and the walls and clock, which the device keeps as flat doubles.
+struct VulkanBackend::Images {
+  std::vector<std::uint32_t> adjacencyStart, adjacency, wallIndex, wallTouching, failure;
+  std::vector<double> walls, clock;
+};
 
-  moveThroughStaging(*device_, staging_, items, true);
-  synced_ = true;
-}
-
-void VulkanBackend::download()
+std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
 {
+  // Host arrays sized as the device lists are now.
   Particles& p = model_.particles;
   ContactState& st = host_->state();
   Bonds& b = model_.bonds;
@@ -713,9 +580,7 @@ void VulkanBackend::download()
   st.pairTorqueI.resize(pairs_);
   st.pairTorqueJ.resize(pairs_);
   st.pairNormal.resize(pairs_);
-  std::vector<std::uint32_t> adjacencyStart(n + 1), adjacency(adjacency_);
   st.wallSlot.resize(wallEntries_);
-  std::vector<std::uint32_t> wallIndex(wallEntries_), wallTouching(wallEntries_);
   st.wallConstants.resize(wallEntries_);
   st.wallSpring.resize(wallEntries_);
   st.wallRolling.resize(rolling_ ? wallEntries_ : 0);
@@ -723,9 +588,13 @@ void VulkanBackend::download()
   st.wallNormal.resize(wallEntries_);
   st.wallStiffness.resize(wallEntries_);
   st.wallElastic.resize(wallEntries_);
-  std::vector<std::uint32_t> failure(bonds_);
-  std::vector<double> walls(6 * WALL_STRIDE), clock(4);
-
+  im.adjacencyStart.resize(n + 1);
+  im.adjacency.resize(adjacency_);
+  im.wallIndex.resize(wallEntries_);
+  im.wallTouching.resize(wallEntries_);
+  im.failure.resize(bonds_);
+  im.walls.resize(6 * WALL_STRIDE);
+  im.clock.resize(4);
   std::vector<Transfer> items;
   auto add = [&](auto& v, const char* name, std::uint64_t count) {
     if (count > 0) {
@@ -740,8 +609,8 @@ void VulkanBackend::download()
   add(p.torque, "torque", n);
   add(st.undampedForce, "undampedForce", n);
   add(st.positionAtBuild, "positionAtBuild", n);
-  add(adjacencyStart, "adjacencyStart", n + 1);
-  add(adjacency, "adjacency", adjacency_);
+  add(im.adjacencyStart, "adjacencyStart", n + 1);
+  add(im.adjacency, "adjacency", adjacency_);
   add(st.pairI, "pairI", pairs_);
   add(st.pairJ, "pairJ", pairs_);
   add(st.pairConstants, "pairConstants", pairs_);
@@ -755,8 +624,8 @@ void VulkanBackend::download()
   add(st.pairNormal, "pairNormal", pairs_);
   add(st.wallStart, "wallStart", n + 1);
   add(st.wallSlot, "wallSlot", wallEntries_);
-  add(wallIndex, "wallIndex", wallEntries_);
-  add(wallTouching, "wallTouching", wallEntries_);
+  add(im.wallIndex, "wallIndex", wallEntries_);
+  add(im.wallTouching, "wallTouching", wallEntries_);
   add(st.wallConstants, "wallConstants", wallEntries_);
   add(st.wallSpring, "wallSpring", wallEntries_);
   if (rolling_) {
@@ -770,27 +639,135 @@ void VulkanBackend::download()
   add(b.shearForce, "bondShearForce", bonds_);
   add(b.twistingMoment, "bondTwistingMoment", bonds_);
   add(b.bendingMoment, "bondBendingMoment", bonds_);
-  add(failure, "bondFailure", bonds_);
+  add(im.failure, "bondFailure", bonds_);
   add(b.failureTime, "bondFailureTime", bonds_);
   add(b.failurePosition, "bondFailurePosition", bonds_);
   add(b.failureNormal, "bondFailureNormal", bonds_);
   add(st.bondForce, "bondForce", bonds_);
   add(st.bondTorqueI, "bondTorqueI", bonds_);
   add(st.bondTorqueJ, "bondTorqueJ", bonds_);
-  add(walls, "walls", walls.size());
-  add(clock, "clock", clock.size());
+  add(im.walls, "walls", im.walls.size());
+  add(im.clock, "clock", im.clock.size());
+  return items;
+}
 
+void VulkanBackend::upload()
+{
+  Particles& p = model_.particles;
+  ContactState& st = host_->state();
+  Bonds& b = model_.bonds;
+  const std::size_t n = n_;
+  pairs_ = static_cast<std::uint32_t>(st.pairI.size());
+  adjacency_ = static_cast<std::uint32_t>(st.adjacency.size());
+  wallEntries_ = static_cast<std::uint32_t>(st.wallSlot.size());
+  if (pairs_ > pairCapacity_ || wallEntries_ > wallCapacity_) {
+    grow(pairs_ > pairCapacity_, wallEntries_ > wallCapacity_, pairs_, wallEntries_);
+  }
+  // The state that changes as the run goes, in the device's element types.
+  Images im;
+  std::vector<Transfer> items = dynamicState(im);
+  std::copy(st.adjacencyStart.begin(), st.adjacencyStart.end(), im.adjacencyStart.begin());
+  std::copy(st.adjacency.begin(), st.adjacency.end(), im.adjacency.begin());
+  std::copy(st.wallIndex.begin(), st.wallIndex.end(), im.wallIndex.begin());
+  std::copy(st.wallTouching.begin(), st.wallTouching.end(), im.wallTouching.begin());
+  std::copy(b.failure.begin(), b.failure.end(), im.failure.begin());
+  for (int w = 0; w < 6; ++w) {
+    const Wall& wall = model_.walls[w];
+    double* x = &im.walls[WALL_STRIDE * w];
+    x[WALL_POSITION] = wall.position;
+    x[WALL_VELOCITY] = wall.velocity;
+    x[WALL_ACTIVE] = wall.active ? 1.0 : 0.0;
+    x[WALL_FORCE] = wall.force.x();
+    x[WALL_FORCE + 1] = wall.force.y();
+    x[WALL_FORCE + 2] = wall.force.z();
+    x[WALL_STIFFNESS] = wall.contactStiffness;
+    x[WALL_ELASTIC] = wall.elasticForce;
+    x[WALL_CONTACTS] = static_cast<double>(wall.contacts);
+    x[WALL_POSITION_AT_BUILD] = st.wallPositionAtBuild[w];
+    x[WALL_ACTIVE_AT_BUILD] = st.wallActiveAtBuild[w] ? 1.0 : 0.0;
+  }
+  im.clock[CLOCK_TIME] = model_.clock.time;
+  auto add = [&](auto& v, const char* name, std::uint64_t count) {
+    if (count > 0) {
+      items.push_back(piece(v, array(name), count));
+    }
+  };
+  // What stays for the run, and what the device derives from the lists.
+  add(p.radius, "radius", n);
+  add(p.mass, "mass", n);
+  add(p.inertia, "inertia", n);
+  add(st.inverseMass, "inverseMass", n);
+  add(st.inverseInertia, "inverseInertia", n);
+  add(p.flags, "flags", n);
+  std::vector<std::uint32_t> sizeClass(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    sizeClass[i] = static_cast<std::uint32_t>(sizeClassOf(p.radius[i], st.smallestRadius));
+  }
+  add(sizeClass, "sizeClass", n);
+  std::vector<std::uint32_t> pairStart(n + 1, 0); // the pair list's CSR
+  for (std::uint32_t i : st.pairI) {
+    ++pairStart[i + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    pairStart[i + 1] += pairStart[i];
+  }
+  std::vector<std::uint32_t> partners(adjacency_); // each gather entry's partner slot
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t e = st.adjacencyStart[i]; e < st.adjacencyStart[i + 1]; ++e) {
+      const std::size_t k = st.adjacency[e] >> 1;
+      partners[e] = (st.adjacency[e] & 1u) ? st.pairI[k] : st.pairJ[k];
+    }
+  }
+  add(pairStart, "pairStart", n + 1);
+  add(partners, "partners", partners.size());
+  std::vector<double> tanFriction(bonds_);
+  for (std::size_t k = 0; k < bonds_; ++k) {
+    tanFriction[k] = std::tan(b.frictionAngle[k]); // as dem::bondFailure computes it
+  }
+  std::vector<std::uint32_t> bondAdjacencyStart(st.bondAdjacencyStart.begin(), st.bondAdjacencyStart.end());
+  std::vector<std::uint32_t> bondAdjacency(st.bondAdjacency.begin(), st.bondAdjacency.end());
+  add(st.bondI, "bondI", bonds_);
+  add(st.bondJ, "bondJ", bonds_);
+  add(b.radius, "bondRadius", bonds_);
+  add(b.normalStiffness, "bondKn", bonds_);
+  add(b.shearStiffness, "bondKs", bonds_);
+  add(b.tensileStrength, "bondTensileStrength", bonds_);
+  add(b.cohesion, "bondCohesion", bonds_);
+  add(tanFriction, "bondTanFriction", bonds_);
+  add(bondAdjacencyStart, "bondAdjacencyStart", bonds_ ? n + 1 : 0);
+  add(bondAdjacency, "bondAdjacency", bondAdjacency.size());
+  // Control: the list sizes, and the pair kernel's dispatch.
+  std::vector<std::uint32_t> ctl(CTL_COUNT, 0);
+  ctl[CTL_PAIRS] = pairs_;
+  ctl[CTL_ADJACENCY] = adjacency_;
+  ctl[CTL_WALL_ENTRIES] = wallEntries_;
+  std::vector<std::uint32_t> indirect(IND_COUNT, 0);
+  const std::uint32_t groups = groupsFor(pairs_, kGroupSize);
+  indirect[IND_PAIRS] = std::min(groups, kDispatchX);
+  indirect[IND_PAIRS + 1] = groups ? groupsFor(groups, kDispatchX) : 0;
+  indirect[IND_PAIRS + 2] = 1;
+  add(ctl, "ctl", ctl.size());
+  add(indirect, "indirect", indirect.size());
+  moveThroughStaging(*device_, staging_, items, true);
+  synced_ = true;
+}
+
+void VulkanBackend::download()
+{
+  Images im;
+  std::vector<Transfer> items = dynamicState(im);
   moveThroughStaging(*device_, staging_, items, false);
   // Back into the CPU layout.
-  st.adjacencyStart.assign(adjacencyStart.begin(), adjacencyStart.end());
-  st.adjacency.assign(adjacency.begin(), adjacency.end());
-  st.wallIndex.assign(wallIndex.begin(), wallIndex.end());
-  st.wallTouching.assign(wallTouching.begin(), wallTouching.end());
-  st.touching.assign(n, 0);
-  b.failure.assign(failure.begin(), failure.end());
+  ContactState& st = host_->state();
+  st.adjacencyStart.assign(im.adjacencyStart.begin(), im.adjacencyStart.end());
+  st.adjacency.assign(im.adjacency.begin(), im.adjacency.end());
+  st.wallIndex.assign(im.wallIndex.begin(), im.wallIndex.end());
+  st.wallTouching.assign(im.wallTouching.begin(), im.wallTouching.end());
+  st.touching.assign(n_, 0);
+  model_.bonds.failure.assign(im.failure.begin(), im.failure.end());
   for (int w = 0; w < 6; ++w) {
     Wall& wall = model_.walls[w];
-    const double* x = &walls[WALL_STRIDE * w];
+    const double* x = &im.walls[WALL_STRIDE * w];
     wall.position = x[WALL_POSITION];
     wall.velocity = x[WALL_VELOCITY];
     wall.force = Vec3(x[WALL_FORCE], x[WALL_FORCE + 1], x[WALL_FORCE + 2]);
@@ -800,7 +777,7 @@ void VulkanBackend::download()
     st.wallPositionAtBuild[w] = x[WALL_POSITION_AT_BUILD];
     st.wallActiveAtBuild[w] = x[WALL_ACTIVE_AT_BUILD] != 0.0;
   }
-  model_.clock.time = clock[CLOCK_TIME];
+  model_.clock.time = im.clock[CLOCK_TIME];
 }
 
 void VulkanBackend::recordControlReadback(VkCommandBuffer cb)

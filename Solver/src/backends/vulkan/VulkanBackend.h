@@ -34,6 +34,9 @@
 #include <vector>
 
 namespace dem {
+namespace vk {
+struct Transfer;
+}
 
 class VulkanBackend final : public Backend {
 public:
@@ -58,11 +61,13 @@ public:
 
 private:
   struct Array;
+  struct Images;
   void allocate();
   void release();
   void grow(bool pairs, bool walls, std::uint32_t neededPairs, std::uint32_t neededWalls);
   void setStageParameters();
   const vk::Buffer& array(const char* name) const;
+  std::vector<vk::Transfer> dynamicState(Images& images);
   void upload();
   void download();
   void recordControlReadback(VkCommandBuffer cb);

@@ -330,6 +330,31 @@ std::uint32_t memoryType(const VkPhysicalDeviceMemoryProperties& props, std::uin
 }
 } // namespace
 
+void Device::allocateAndBind(Buffer& b, VkDeviceSize size, std::uint32_t type, const void* next,
+                             const char* what)
+{
+  VkMemoryAllocateInfo mai{};
+  mai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  mai.pNext = next;
+  mai.allocationSize = size;
+  mai.memoryTypeIndex = type;
+  VkResult r = VK_ERROR_OUT_OF_DEVICE_MEMORY; // the failure ROCKDEM_VULKAN_FAIL_ALLOCATION asks for
+  if (++allocations_ != failAllocation_) {
+    r = api_.vkAllocateMemory(device_, &mai, nullptr, &b.memory);
+  }
+  if (r != VK_SUCCESS) {
+    api_.vkDestroyBuffer(device_, b.buffer, nullptr);
+    b.buffer = VK_NULL_HANDLE;
+    throw Unavailable("allocating " + std::to_string(b.bytes) + " bytes of " + what + " memory failed (" +
+                      resultName(r) + ")");
+  }
+  const VkResult bound = api_.vkBindBufferMemory(device_, b.buffer, b.memory, 0);
+  if (bound != VK_SUCCESS) {
+    destroy(b);
+    check(bound, "vkBindBufferMemory");
+  }
+}
+
 Buffer Device::createBuffer(VkDeviceSize bytes)
 {
   Buffer b;
@@ -355,21 +380,7 @@ Buffer Device::createBuffer(VkDeviceSize bytes)
   VkMemoryAllocateFlagsInfo flags{};
   flags.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO;
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
-  VkMemoryAllocateInfo mai{};
-  mai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  mai.pNext = &flags;
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = type;
-  VkResult r = VK_ERROR_OUT_OF_DEVICE_MEMORY;
-  if (++allocations_ != failAllocation_) {
-    r = api_.vkAllocateMemory(device_, &mai, nullptr, &b.memory);
-  }
-  if (r != VK_SUCCESS) {
-    api_.vkDestroyBuffer(device_, b.buffer, nullptr);
-    throw Unavailable("allocating " + std::to_string(b.bytes) + " bytes of device memory failed (" +
-                      resultName(r) + ")");
-  }
-  check(api_.vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  allocateAndBind(b, req.size, type, &flags, "device");
   VkBufferDeviceAddressInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO;
   ai.buffer = b.buffer;
@@ -395,20 +406,7 @@ Buffer Device::createStaging(VkDeviceSize bytes)
     api_.vkDestroyBuffer(device_, b.buffer, nullptr);
     throw Unavailable("the device has no host-visible coherent memory");
   }
-  VkMemoryAllocateInfo mai{};
-  mai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = type;
-  VkResult r = VK_ERROR_OUT_OF_DEVICE_MEMORY;
-  if (++allocations_ != failAllocation_) {
-    r = api_.vkAllocateMemory(device_, &mai, nullptr, &b.memory);
-  }
-  if (r != VK_SUCCESS) {
-    api_.vkDestroyBuffer(device_, b.buffer, nullptr);
-    throw Unavailable("allocating " + std::to_string(b.bytes) + " bytes of staging memory failed (" +
-                      resultName(r) + ")");
-  }
-  check(api_.vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  allocateAndBind(b, req.size, type, nullptr, "staging");
   check(api_.vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   return b;
 }

@@ -130,6 +130,8 @@ public:
 private:
   Device() = default;
   void create();
+  void allocateAndBind(Buffer& buffer, VkDeviceSize size, std::uint32_t type, const void* next,
+                       const char* what);
 
   void* library_ = nullptr;
   Api api_;
