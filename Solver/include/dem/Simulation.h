@@ -85,8 +85,9 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial", "CPU OpenMP (N threads)", "GPU Vulkan: <device>", or
-  /// after a fallback "CPU OpenMP (N threads): GPU requested, fell back because <reason>".
+  /// Which path runs: "CPU serial (why: too few particles for threads, Threads = 1)",
+  /// "CPU OpenMP (N threads)", "GPU Vulkan: <device>", or after a fallback
+  /// "CPU ...: GPU requested, fell back because <reason>".
   std::string path() const;
   /// Device memory the run holds (zero on the CPU).
   DeviceMemory deviceMemory() const { return backend_->deviceMemory(); }
@@ -121,6 +122,7 @@ private:
   std::string timestepMessage_;
   std::string gpuFallbackReason_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
+  double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
   bool broken_ = false;                 ///< an instability stopped the run
 };
 

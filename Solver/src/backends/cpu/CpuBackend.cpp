@@ -108,8 +108,18 @@ CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double ti
 
 std::string CpuBackend::path() const
 {
-  return state_.parallel ? "CPU OpenMP (" + std::to_string(state_.threads) + " threads)"
-                         : std::string("CPU serial");
+  if (state_.parallel) {
+    return "CPU OpenMP (" + std::to_string(state_.threads) + " threads)";
+  }
+  // Serial: say why, since Threads may have asked for more.
+  const SolverSettings& s = model_.solver;
+  const auto n = static_cast<std::int64_t>(model_.particles.size());
+  if (n < s.parallelThreshold) {
+    return "CPU serial (" + std::to_string(n) + " particles, below the parallel threshold of " +
+      std::to_string(s.parallelThreshold) + (s.threads == 1 ? ")" : "; threads are used from there on)");
+  }
+  return s.threads == 1 ? std::string("CPU serial (Threads = 1)")
+                        : std::string("CPU serial (OpenMP offers 1 thread)");
 }
 
 void CpuBackend::run(std::int64_t steps)
@@ -131,15 +141,8 @@ StabilityReport CpuBackend::stability()
     }
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      const bool walled = model_.walls[2 * k].active;
-      if (walled && (p.position[i][k] < model_.walls[2 * k].position ||
-                     p.position[i][k] > model_.walls[2 * k + 1].position)) {
-        if (r.escaped++ == 0) {
-          r.firstEscaped = static_cast<long>(i);
-        }
-        break;
-      }
+    if (beyondActiveWalls(model_.walls, p.position[i]) && r.escaped++ == 0) {
+      r.firstEscaped = static_cast<long>(i);
     }
   }
   if (r.escaped > 0) {
