@@ -232,6 +232,16 @@ Simulation::Simulation(Model& model, SolverDevice device)
 
 Simulation::~Simulation() = default;
 
+std::string gpuUnavailableReason()
+{
+  try {
+    vk::Device::open();
+  } catch (const vk::Unavailable& e) {
+    return e.what();
+  }
+  return std::string();
+}
+
 std::string Simulation::path() const
 {
   if (!gpuFallbackReason_.empty()) {

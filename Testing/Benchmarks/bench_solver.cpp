@@ -472,6 +472,13 @@ int runThroughput(const Options& o)
            "model_bytes_per_particle,solver_bytes_per_particle,peak_bytes_per_particle,kinetic_energy_end_J,"
            "other_processes_cores",
            false);
+  if (std::find(o.backends.begin(), o.backends.end(), "gpu") != o.backends.end()) {
+    const std::string whyNot = dem::gpuUnavailableReason();
+    if (!whyNot.empty()) {
+      // The GPU rows then show the fallback (the CPU) and its reason.
+      std::printf("GPU: no usable Vulkan device on this machine: %s\n", whyNot.c_str());
+    }
+  }
   for (long requested : o.sizes) {
     const long steps = o.steps > 0 ? o.steps : (o.quick ? 50 : defaultSteps(requested));
     for (const std::string& pack : o.packs) {

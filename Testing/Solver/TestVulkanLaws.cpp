@@ -11,6 +11,7 @@
 #include "dem/EmbeddedShaders.h"
 #include "dem/WallControl.h"
 #include "parity_layout.h"
+#include "RequireVulkan.h"
 
 #include <gtest/gtest.h>
 
@@ -219,12 +220,8 @@ std::vector<Case> makeCases()
 
 TEST(VulkanLaws, SameBitsAsTheCppLawsOnTheDevice)
 {
-  std::shared_ptr<dem::vk::Device> device;
-  try {
-    device = dem::vk::Device::open();
-  } catch (const dem::vk::Unavailable& e) {
-    FAIL() << "no Vulkan device (lavapipe: mesa-vulkan-drivers): " << e.what();
-  }
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  const std::shared_ptr<dem::vk::Device> device = dem::vk::Device::open();
   const std::vector<Case> cases = makeCases();
   const std::uint64_t inBytes = cases.size() * sizeof(Case);
   const std::uint64_t outBytes = cases.size() * PARITY_OUT * sizeof(double);
@@ -312,6 +309,7 @@ TEST(VulkanLaws, NoFloatingPointOperationMayBeFusedIntoAnFma)
 
 TEST(VulkanDevice, AnArrayLargerThanTheBindingRangeIsReachedWhole)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   // The backend reaches its arrays by buffer device address (GL_EXT_buffer_reference), so
   // maxStorageBufferRange (128 MiB on lavapipe) does not cap an array: a kernel sums an
   // array 1.25 x that size whose only non-zero element is its last.

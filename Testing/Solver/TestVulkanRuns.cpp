@@ -4,6 +4,7 @@
 // the other suites check against analytic solutions and published benchmarks. Also: the
 // device lists grow without losing a step, a state saved from a GPU run resumes on either
 // path, and every reason not to use the GPU falls back to the CPU with a message.
+#include "RequireVulkan.h"
 #include "StateFixtures.h"
 #include "backends/cpu/CpuBackend.h"
 #include "backends/vulkan/VulkanBackend.h"
@@ -85,6 +86,7 @@ LoadTestSettings compression(double strainRate, std::int64_t sampleInterval)
 
 TEST(VulkanRuns, CementedSpecimenUnderUnconfinedCompressionGivesTheCpuBits)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   Model m = cementedSpecimen(2200, 0.033, 5);
   ASSERT_GE(m.particles.size(), 2000u);
   ASSERT_GT(m.bonds.size(), 2000u);
@@ -100,6 +102,7 @@ TEST(VulkanRuns, CementedSpecimenUnderUnconfinedCompressionGivesTheCpuBits)
 
 TEST(VulkanRuns, SettlingWithRollingFrictionGivesTheCpuBits)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   // A grown pack, periodic in X, thrown about (random velocities up to 0.5 m/s) so that
   // neighbour lists are rebuilt often, settling under gravity with rolling resistance.
   Model m;
@@ -130,6 +133,7 @@ TEST(VulkanRuns, SettlingWithRollingFrictionGivesTheCpuBits)
 
 TEST(VulkanRuns, PressTestToPastThePeakMatches)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   // The press result on both paths: peak stress, Young's modulus (secant at 50 % of the
   // peak), strain at the peak and broken bonds, from the same bits.
   const Model start = [] {
@@ -185,6 +189,7 @@ TEST(VulkanRuns, PressTestToPastThePeakMatches)
 
 TEST(VulkanRuns, AStateSavedFromAGpuRunResumesOnEitherPath)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   // Triaxial test (servo on the device): A runs 2 x 600 steps on the CPU; B runs 600 on the
   // GPU, is written to a state file and read back, then runs 600 on the CPU; C the same
   // but continues on the GPU. All three end bitwise identical.
@@ -224,6 +229,7 @@ TEST(VulkanRuns, AStateSavedFromAGpuRunResumesOnEitherPath)
 
 TEST(VulkanRuns, ListsGrowOnTheDeviceWithoutLosingAStep)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   // A loose pack falling onto the floor: the pair and wall lists grow. With lists that
   // start without headroom, the device halts before a list overflows, the host grows it
   // and the step resumes at its rebuild: the run still gives the CPU's bits.
@@ -316,18 +322,21 @@ TEST(VulkanFallback, NoVulkanDriver)
 
 TEST(VulkanFallback, DeviceWithoutDoublePrecision)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   ScopedEnvironment e("ROCKDEM_VULKAN_SIMULATE_NO_FP64", "1");
   expectFallback("has no double precision in shaders (shaderFloat64)");
 }
 
 TEST(VulkanFallback, TooLittleDeviceMemory)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   ScopedEnvironment e("ROCKDEM_VULKAN_SIMULATE_MEMORY", "10000");
   expectFallback("too little device memory");
 }
 
 TEST(VulkanFallback, FailedAllocation)
 {
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
   ScopedEnvironment e("ROCKDEM_VULKAN_FAIL_ALLOCATION", "17");
   expectFallback("failed (out of device memory)");
 }

@@ -64,6 +64,11 @@ void resetWalls(Model& model);
 /// can run the model (else the CPU, and path() says why).
 enum class SolverDevice { CPU, GPU };
 
+/// Empty when this machine has a Vulkan device that can run the GPU solver (a GPU request
+/// then uses it when the model fits in its memory); otherwise why not, in the words a
+/// fallback would use ("no Vulkan device", "... has no double precision in shaders ...").
+std::string gpuUnavailableReason();
+
 class Simulation {
 public:
   /// Validates the model and settings, calibrates the contact damping, chooses the
