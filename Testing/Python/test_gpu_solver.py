@@ -27,15 +27,21 @@ pack.UpdatePipeline()
 
 
 def run(gpu):
+    """The stage at its last frame (positions, velocities, Solver Path, contacts, Last
+    Message), then back at frame 1 (the time contract: an earlier time restores the
+    nearest checkpoint, replaying from it if needed, on the same path): positions."""
     stage = DEMLoadTest(Input=pack, FrameInterval=0.01, NumberOfFrames=3, GPUSolver=gpu)
     t = stage.TimestepValues[-1]
     stage.UpdatePipeline(t)
     data = servermanager.Fetch(stage)
     particles = data.GetBlock(0)
-    out = (vtk_to_numpy(particles.GetPoints().GetData()).copy(),
+    out = [vtk_to_numpy(particles.GetPoints().GetData()).copy(),
            vtk_to_numpy(particles.GetPointData().GetArray("Velocity")).copy(),
            rockdem.read_only(stage, "SolverPath"),
-           rockdem.read_only(stage, "NumberOfContacts"))
+           rockdem.read_only(stage, "NumberOfContacts"),
+           rockdem.read_only(stage, "LastMessage")]
+    stage.UpdatePipeline(stage.TimestepValues[1])
+    out.append(vtk_to_numpy(servermanager.Fetch(stage).GetBlock(0).GetPoints().GetData()).copy())
     Delete(stage)
     return out
 
@@ -58,6 +64,8 @@ if no_device is None:
     c.check(cpu[3] > 0 and cpu[3] == gpu[3], "contacts formed, the same count on both paths (%d)" % cpu[3])
     c.check((cpu[0] == gpu[0]).all() and (cpu[1] == gpu[1]).all(),
             "positions and velocities after 3 frames are bitwise the CPU's")
+    c.check((cpu[5] == gpu[5]).all() and not (gpu[5] == gpu[0]).all(),
+            "back at frame 1 (the time contract on the GPU path): bitwise the CPU's frame 1")
 else:
     c.check((gpu[0] == cpu[0]).all(), "no Vulkan device: the GPU request ran the CPU run")
 
@@ -68,6 +76,8 @@ print("fallback Solver Path:", fallback[2])
 c.check(fallback[2].startswith("CPU") and "GPU requested, fell back because Vulkan is disabled" in fallback[2],
         "without Vulkan the stage runs on the CPU and Solver Path says why")
 c.check((fallback[0] == cpu[0]).all(), "the fallback run is the CPU run")
+c.check("GPU Solver: running on the CPU because Vulkan is disabled" in fallback[4],
+        "the fallback reason is the Last Message (%r)" % fallback[4])
 if no_device is not None and not c.failed:
     print("SKIPPED: no usable Vulkan device on this machine (%s); the GPU checks need one "
           "(Debian: mesa-vulkan-drivers)" % no_device)
