@@ -1,6 +1,6 @@
 // RockDEM shaders: the parallel bond (Potyondy & Cundall 2004; PHYSICS.md section 3), the
 // GLSL mirror of dem/Bonds.h (bondSection, bondStresses, bondFailure) and dem/BondLaw.h
-// (incrementBond). Same operations in the same order as the C++ (TestVulkanParity).
+// (incrementBond). Same operations in the same order as the C++ (VulkanLaws.SameBitsAsTheCppLawsOnTheDevice).
 // SI units: m, N, N m, Pa.
 #ifndef ROCKDEM_BOND_LAWS_GLSL
 #define ROCKDEM_BOND_LAWS_GLSL

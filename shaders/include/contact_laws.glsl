@@ -1,6 +1,6 @@
 // RockDEM shaders: the contact force laws, the GLSL mirror of dem/ContactLaws.h (PHYSICS.md
 // section 1). Each function performs the same operations in the same order as its C++
-// twin, so that both give the same bits (checked by the parity test, TestVulkanParity).
+// twin, so that both give the same bits (checked by the parity test, VulkanLaws.SameBitsAsTheCppLawsOnTheDevice).
 // SI units: m, kg, s, N, Pa. Overlap > 0 in contact; approach speed > 0 approaching.
 #ifndef ROCKDEM_CONTACT_LAWS_GLSL
 #define ROCKDEM_CONTACT_LAWS_GLSL

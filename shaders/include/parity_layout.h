@@ -1,5 +1,5 @@
 // RockDEM: layout of one case of the law parity check (shaders/solver/law_parity.comp and
-// Testing/Solver/TestVulkanParity.cpp): PARITY_IN input doubles, PARITY_OUT results.
+// Testing/Solver/TestVulkanLaws.cpp): PARITY_IN input doubles, PARITY_OUT results.
 #ifndef ROCKDEM_PARITY_LAYOUT_H
 #define ROCKDEM_PARITY_LAYOUT_H
 

@@ -1,6 +1,6 @@
 #version 460
 // RockDEM law parity check: every force law of the step (contact_laws.glsl,
-// bond_laws.glsl, servo_law.glsl) on a list of cases, for TestVulkanParity, which runs the
+// bond_laws.glsl, servo_law.glsl) on a list of cases, for VulkanLaws.SameBitsAsTheCppLawsOnTheDevice, which runs the
 // C++ twins (dem/ContactLaws.h, dem/BondLaw.h, dem/Bonds.h, dem/WallControl.h) on the same
 // inputs and requires the same bits. Case layout: PARITY_* in parity_layout.h. One
 // invocation per case.

@@ -1,7 +1,7 @@
 // RockDEM engine: the incremental update of a parallel bond (Potyondy & Cundall 2004;
 // PHYSICS.md section 3). With dem::bondSection, dem::bondStresses and dem::bondFailure
 // (dem/Bonds.h) it is the bond's force law; the GLSL twin is shaders/include/bond_laws.glsl
-// (same operations in the same order; TestVulkanParity requires identical bits). SI units.
+// (same operations in the same order; VulkanLaws.SameBitsAsTheCppLawsOnTheDevice requires identical bits). SI units.
 #pragma once
 
 #include "dem/Bonds.h"

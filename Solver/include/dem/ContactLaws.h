@@ -4,7 +4,7 @@
 // The laws the time step uses (pairProperties, wallProperties, contactConstants,
 // normalStiffness, the responses, rotateIntoPlane, mindlinCoulombForce, rollingTorque,
 // cundallDamping) have a GLSL twin in shaders/include/contact_laws.glsl that performs the
-// same operations in the same order; TestVulkanParity requires identical bits.
+// same operations in the same order; VulkanLaws.SameBitsAsTheCppLawsOnTheDevice requires identical bits.
 // Sign conventions: overlap delta > 0 while in contact; approach speed (d delta / dt)
 // is positive while the surfaces approach. Normal forces are magnitudes along the
 // contact normal, repulsive, never negative (no-tension cut-off: the contact ends
