@@ -9,6 +9,7 @@
 #include "backends/cpu/CpuBackend.h"
 #include "backends/vulkan/VulkanBackend.h"
 #include "dem/Cement.h"
+#include "dem/ParticleStress.h"
 #include "dem/StateFile.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +55,14 @@ std::string cpuGpuDifference(const Model& start, const std::vector<std::int64_t>
     EXPECT_EQ(da.contacts, db.contacts);
     EXPECT_EQ(da.kineticEnergy, db.kineticEnergy);
     EXPECT_EQ(da.unbalancedForceRatio, db.unbalancedForceRatio);
+    // The per-particle stress (issue 16) reads the interaction forces from the backend.
+    const InteractionForces fa = a.interactionForces();
+    const InteractionForces fb = b.interactionForces();
+    EXPECT_GT(fa.size(), 0u);
+    EXPECT_TRUE(statetest::sameBits(fa.slotA, fb.slotA) && statetest::sameBits(fa.slotB, fb.slotB) &&
+                statetest::sameBits(fa.force, fb.force) && statetest::sameBits(fa.armA, fb.armA) &&
+                statetest::sameBits(fa.armB, fb.armB))
+      << "interaction forces (the per-particle stress) differ";
   }
   if (cpuEnd) {
     *cpuEnd = cpu;
