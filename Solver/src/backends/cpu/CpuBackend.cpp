@@ -732,7 +732,7 @@ void CpuBackend::computeBondForces(bool incrementState)
                     relativeVelocity, relativeSpin, dt, b.normalForce[k], b.shearForce[k],
                     b.twistingMoment[k], b.bendingMoment[k]);
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
-        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
       const BondFailure failure =
         bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
       if (failure != BondFailure::Intact) {
