@@ -349,3 +349,16 @@ TEST(VulkanFallback, FailedAllocation)
   ScopedEnvironment e("ROCKDEM_VULKAN_FAIL_ALLOCATION", "17");
   expectFallback("failed (out of device memory)");
 }
+
+TEST(VulkanFallback, BondsWithAMomentContributionBelowOne)
+{
+  // Not yet mirrored in GLSL (issue 12's Moment Contribution): the CPU runs such a model.
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  Model m = cementedSpecimen(300, 0.016, 2);
+  ASSERT_GT(m.bonds.size(), 0u);
+  m.bonds.momentContribution.assign(m.bonds.size(), 0.5);
+  Simulation gpu(m, SolverDevice::GPU);
+  EXPECT_NE(gpu.gpuFallbackReason().find("Moment Contribution other than 1"), std::string::npos)
+    << gpu.gpuFallbackReason();
+  EXPECT_EQ(gpu.path().rfind("CPU ", 0), 0u) << gpu.path();
+}
