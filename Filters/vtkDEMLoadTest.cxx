@@ -234,6 +234,7 @@ vtkDEMLoadTest::vtkDEMLoadTest()
   , RequestedTimestep(0.0)
   , SettlingDamping(0.7)
   , Threads(0)
+  , GPUSolver(0)
   , CriticalTimestep(0.0)
   , Timestep(0.0)
   , CurrentPorosity(1.0)
@@ -442,7 +443,7 @@ int vtkDEMLoadTest::RequestData(
           this->LastMessageText = removed;
         }
       }
-      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
       in.StepsPerFrame =
         std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
       in.Frame = 0;
@@ -454,6 +455,13 @@ int vtkDEMLoadTest::RequestData(
       {
         vtkWarningMacro(<< in.Simulation->timestepMessage());
         this->LastMessageText = in.Simulation->timestepMessage();
+      }
+      if (!in.Simulation->gpuFallbackReason().empty())
+      {
+        const std::string fallback =
+          "GPU Solver: running on the CPU because " + in.Simulation->gpuFallbackReason() + ".";
+        vtkWarningMacro(<< fallback);
+        this->LastMessageText = fallback;
       }
       if (!in.GravityNote.empty())
       {
@@ -467,7 +475,7 @@ int vtkDEMLoadTest::RequestData(
       auto it = in.Checkpoints.upper_bound(frame);
       --it; // frame 0 is always kept
       in.Model = it->second;
-      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
       in.Frame = it->first;
       in.Failed = false;
     }
@@ -642,6 +650,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Gravity: " << this->Gravity[0] << " " << this->Gravity[1] << " "
      << this->Gravity[2] << " m/s^2\n";
   os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "GPUSolver: " << this->GPUSolver << "\n";
   os << indent << "Axis: " << this->Axis << "\n";
   os << indent << "ConfiningStress: " << this->ConfiningStress << " Pa\n";
   os << indent << "StrainRate: " << this->StrainRate << " 1/s\n";

@@ -179,6 +179,15 @@ public:
   ///@}
 
   ///@{
+  /// GPU Solver: run the step on a Vulkan device (off by default). Without a usable device
+  /// (no driver, no double precision, too little memory) the run falls back to the CPU
+  /// with a warning; Solver Path says which path ran. The same bits on either path.
+  vtkSetMacro(GPUSolver, vtkTypeBool);
+  vtkGetMacro(GPUSolver, vtkTypeBool);
+  vtkBooleanMacro(GPUSolver, vtkTypeBool);
+  ///@}
+
+  ///@{
   /// Read-only values of the last update.
   vtkGetMacro(CriticalTimestep, double);   ///< s
   vtkGetMacro(Timestep, double);           ///< s, the step in use
@@ -189,7 +198,7 @@ public:
   vtkGetMacro(ModelTime, double);          ///< s, the model clock
   vtkGetMacro(CurrentFrame, int);
   const char* GetStatus() const { return this->StatusText.c_str(); } ///< last status line (or error)
-  const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial"
+  const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial (...)", "GPU Vulkan: <device>"
   /// The last warning or report (a failed checkpoint or History File, removed escaped
   /// grains, an overridden timestep); empty when none.
   const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
@@ -238,6 +247,7 @@ protected:
   double SettlingDamping;
   double Gravity[3];
   int Threads;
+  vtkTypeBool GPUSolver;
   int Axis = 2;
   double ConfiningStress = 1e6;
   double StrainRate = 0.1;
