@@ -110,7 +110,7 @@ std::vector<double> cpuResults(const Case& c)
   put3(OUT_BOND_STATE + 1, fs);
   out[OUT_BOND_STATE + 4] = mt;
   put3(OUT_BOND_STATE + 5, mb);
-  const dem::BondStresses stresses = dem::bondStresses(section, bondRadius, fn, fs, mt, mb);
+  const dem::BondStresses stresses = dem::bondStresses(section, bondRadius, fn, fs, mt, mb, in[IN_BOND_BETA]);
   out[OUT_STRESSES] = stresses.sigmaMax;
   out[OUT_STRESSES + 1] = stresses.tauMax;
   out[OUT_STRESSES + 2] = stresses.compressive;
@@ -174,6 +174,7 @@ std::vector<Case> makeCases()
     in[IN_BOND_COHESION] = logUniform(1e4, 1e8);
     in[IN_BOND_PHI] = 0.9 * u(rng);
     in[IN_BOND_TAN_PHI] = std::tan(in[IN_BOND_PHI]);
+    in[IN_BOND_BETA] = 0.25 * ((k / 5) % 5); // Moment Contribution 0, 0.25, 0.5, 0.75, 1, in 2D and 3D
     in[IN_BOND_FN] = signedLog(1e-6, 10.0);
     c.set3(IN_BOND_FS, dem::inPlane(vec(1e-6, 10.0), unit(rng)));
     in[IN_BOND_MT] = signedLog(1e-9, 1e-2);

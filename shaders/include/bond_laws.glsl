@@ -43,14 +43,15 @@ struct BondStresses {
   double compressive;
 };
 
-/// dem::bondStresses.
+/// dem::bondStresses, with beta the bond's Moment Contribution factor (dem::Bonds::momentContribution).
 BondStresses bondStresses(BondSection s, double bondRadius, double normalForce, dvec3 shearForce,
-                          double twistingMoment, dvec3 bendingMoment)
+                          double twistingMoment, dvec3 bendingMoment, double momentContribution)
 {
+  const double beta = momentContribution;
   BondStresses o;
-  o.sigmaMax = normalForce / s.area + norm3(bendingMoment) * bondRadius / s.inertia;
+  o.sigmaMax = normalForce / s.area + beta * norm3(bendingMoment) * bondRadius / s.inertia;
   o.tauMax = norm3(shearForce) / s.area +
-    (s.polar > 0.0LF ? abs(twistingMoment) * bondRadius / s.polar : 0.0LF);
+    (s.polar > 0.0LF ? beta * abs(twistingMoment) * bondRadius / s.polar : 0.0LF);
   o.compressive = -normalForce / s.area;
   return o;
 }

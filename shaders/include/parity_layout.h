@@ -50,6 +50,7 @@
 #define IN_SERVO_MAX_SPEED 58u
 #define IN_SERVO_SIDE 59u
 #define IN_BOND_PHI 60u     // the C++ side: friction angle (rad); IN_BOND_TAN_PHI = std::tan of it
+#define IN_BOND_BETA 61u    // Moment Contribution factor
 
 // Results
 #define OUT_PAIR 0u            // 6: PairProperties

@@ -41,7 +41,8 @@ void main()
   incrementBond(section, p.bondKn.v[k], p.bondKs.v[k], planar, normal, relativeVelocity,
                 relativeSpin, dt, normalForce, shearForce, twistingMoment, bendingMoment);
   const BondStresses stresses =
-    bondStresses(section, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment);
+    bondStresses(section, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment,
+                 p.bondMomentContribution.v[k]);
   const uint failure =
     bondFailure(stresses, p.bondTensileStrength.v[k], p.bondCohesion.v[k], p.bondTanFriction.v[k]);
   if (failure != BOND_INTACT) {

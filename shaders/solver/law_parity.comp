@@ -111,7 +111,8 @@ void main()
   out_(c, OUT_BOND_STATE + 4u, twistingMoment);
   out3(c, OUT_BOND_STATE + 5u, bendingMoment);
   const BondStresses stresses =
-    bondStresses(section, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment);
+    bondStresses(section, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment,
+                 in_(c, IN_BOND_BETA));
   out_(c, OUT_STRESSES + 0u, stresses.sigmaMax);
   out_(c, OUT_STRESSES + 1u, stresses.tauMax);
   out_(c, OUT_STRESSES + 2u, stresses.compressive);

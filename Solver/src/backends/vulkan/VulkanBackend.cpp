@@ -73,6 +73,7 @@ const ArraySpec kArrays[] = {
   { "bondI", Count::Bonds, 4 }, { "bondJ", Count::Bonds, 4 }, { "bondRadius", Count::Bonds, 8 },
   { "bondKn", Count::Bonds, 8 }, { "bondKs", Count::Bonds, 8 }, { "bondTensileStrength", Count::Bonds, 8 },
   { "bondCohesion", Count::Bonds, 8 }, { "bondTanFriction", Count::Bonds, 8 },
+  { "bondMomentContribution", Count::Bonds, 8 },
   { "bondNormalForce", Count::Bonds, 8 }, { "bondShearForce", Count::Bonds3, 8 },
   { "bondTwistingMoment", Count::Bonds, 8 }, { "bondBendingMoment", Count::Bonds3, 8 },
   { "bondFailure", Count::Bonds, 4 }, { "bondFailureTime", Count::Bonds, 8 },
@@ -229,14 +230,6 @@ VulkanBackend::VulkanBackend(Model& model, const ContactModel& contactModel, dou
   , contactModel_(contactModel)
   , timestep_(timestep)
 {
-  // The GLSL bond law does not yet weigh the moments by the Moment Contribution factor
-  // (issue 12): such a model runs on the CPU, saying why, rather than differently here.
-  for (double beta : model.bonds.momentContribution) {
-    if (beta != 1.0) {
-      throw vk::Unavailable("the GPU solver does not yet support bonds with a Moment Contribution other than 1 (" +
-                            std::to_string(beta) + ")");
-    }
-  }
   device_ = vk::Device::open();
   const Particles& p = model.particles;
   if (p.size() >= (1ull << 31) / 3) {
@@ -742,6 +735,7 @@ void VulkanBackend::upload()
   add(b.tensileStrength, "bondTensileStrength", bonds_);
   add(b.cohesion, "bondCohesion", bonds_);
   add(tanFriction, "bondTanFriction", bonds_);
+  add(b.momentContribution, "bondMomentContribution", bonds_);
   add(bondAdjacencyStart, "bondAdjacencyStart", bonds_ ? n + 1 : 0);
   add(bondAdjacency, "bondAdjacency", bondAdjacency.size());
   // Control: the list sizes, and the pair kernel's dispatch.
