@@ -6,6 +6,7 @@
 //
 //   rockdem_bench_compact [--sizes 10000,100000] [--2d] [--target 0.36] [--threads 2]
 //                         [--ceiling Pa] [--quick]
+#include "CommaList.h"
 #include "dem/Pack.h"
 
 #include <chrono>
@@ -30,28 +31,13 @@ struct Options {
   bool periodic = false;
 };
 
-std::vector<long> parseSizes(const std::string& s)
-{
-  std::vector<long> sizes;
-  std::size_t start = 0;
-  while (start < s.size()) {
-    const std::size_t comma = s.find(',', start);
-    sizes.push_back(std::atol(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start).c_str()));
-    if (comma == std::string::npos) {
-      break;
-    }
-    start = comma + 1;
-  }
-  return sizes;
-}
-
 Options parse(int argc, char** argv)
 {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--sizes" && i + 1 < argc) {
-      o.sizes = parseSizes(argv[++i]);
+      o.sizes = rockdem_bench::parseList<long>(argv[++i]);
     } else if (a == "--2d") {
       o.planar = true;
     } else if (a == "--target" && i + 1 < argc) {

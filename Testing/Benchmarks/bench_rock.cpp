@@ -9,6 +9,7 @@
 //                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6]
 //                      [--moment-contribution 1] ...
 // Every option is listed by --help. SI units.
+#include "CommaList.h"
 #include "dem/Cement.h"
 #include "dem/Fractures.h"
 #include "dem/LoadTest.h"
@@ -61,21 +62,6 @@ struct Options {
   bool lengthStiffness = false; // experiment: kn = Bond Modulus / (bond length at cementing)
 };
 
-std::vector<double> parseList(const std::string& s)
-{
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start < s.size()) {
-    const std::size_t comma = s.find(',', start);
-    out.push_back(std::atof(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start).c_str()));
-    if (comma == std::string::npos) {
-      break;
-    }
-    start = comma + 1;
-  }
-  return out;
-}
-
 Options parse(int argc, char** argv)
 {
   Options o;
@@ -96,7 +82,7 @@ Options parse(int argc, char** argv)
     } else if (a == "--tests" && i + 1 < argc) {
       o.tests = argv[++i];
     } else if (a == "--confining" && i + 1 < argc) {
-      o.confining = parseList(argv[++i]);
+      o.confining = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--seed" && i + 1 < argc) {
       o.seed = static_cast<std::uint64_t>(std::atol(argv[++i]));
     } else if (a == "--threads" && i + 1 < argc) {

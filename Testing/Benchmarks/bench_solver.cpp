@@ -51,6 +51,7 @@
 // Any dem::InstabilityError is caught and reported in the status columns ("unstable:..."),
 // an impact that returns faster than it came is reported as "energy-gain"; the last
 // column, stable, is 0 when any of the three threw. CSV on stdout (and in --csv FILE).
+#include "CommaList.h"
 #include "dem/Cement.h"
 #include "dem/LoadTest.h"
 #include "dem/Pack.h"
@@ -114,23 +115,6 @@ struct Options {
                                 0.7, 1.0, 1.5, 2.0, 3.0 };
 };
 
-template <class T>
-std::vector<T> parseList(const char* text)
-{
-  std::vector<T> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) {
-      std::stringstream is(item);
-      T value{};
-      is >> value;
-      out.push_back(value);
-    }
-  }
-  return out;
-}
-
 [[noreturn]] void usage(const char* argv0)
 {
   std::fprintf(stderr,
@@ -150,17 +134,17 @@ Options parse(int argc, char** argv)
     const std::string a = argv[i];
     const bool hasValue = i + 1 < argc;
     if (a == "--sizes" && hasValue) {
-      o.sizes = parseList<long>(argv[++i]);
+      o.sizes = rockdem_bench::parseList<long>(argv[++i]);
     } else if (a == "--steps" && hasValue) {
       o.steps = std::atol(argv[++i]);
     } else if (a == "--packs" && hasValue) {
-      o.packs = parseList<std::string>(argv[++i]);
+      o.packs = rockdem_bench::parseList<std::string>(argv[++i]);
     } else if (a == "--backend" && hasValue) {
-      o.backends = parseList<std::string>(argv[++i]);
+      o.backends = rockdem_bench::parseList<std::string>(argv[++i]);
     } else if (a == "--pack" && hasValue) {
       o.pack = argv[++i];
     } else if (a == "--threads" && hasValue) {
-      o.threads = parseList<int>(argv[++i]);
+      o.threads = rockdem_bench::parseList<int>(argv[++i]);
     } else if (a == "--restitution" && hasValue) {
       gRestitution = std::atof(argv[++i]);
     } else if (a == "--damping" && hasValue) {
@@ -180,7 +164,7 @@ Options parse(int argc, char** argv)
     } else if (a == "--sweep-particles" && hasValue) {
       o.sweepParticles = std::atol(argv[++i]);
     } else if (a == "--safeties" && hasValue) {
-      o.safeties = parseList<double>(argv[++i]);
+      o.safeties = rockdem_bench::parseList<double>(argv[++i]);
     } else {
       usage(argv[0]);
     }
