@@ -20,6 +20,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -334,11 +335,11 @@ int vtkDEMLoadTest::RequestData(
   const auto start = std::chrono::steady_clock::now();
   try
   {
-    if (this->Mode < MODE_OFF || this->Mode > MODE_ISOTROPIC)
+    if (this->Mode < MODE_OFF || this->Mode > MODE_BRAZILIAN)
     {
       throw dem::InputError("Mode = " + std::to_string(this->Mode) +
         " is out of range: valid modes are Off (0), Compression (1), Tension (2), Triaxial (3), "
-        "Isotropic (4).");
+        "Isotropic (4), Brazilian (5).");
     }
     dem::LoadTestSettings press;
     press.mode = static_cast<dem::TestMode>(this->Mode);
@@ -348,6 +349,7 @@ int vtkDEMLoadTest::RequestData(
     press.maxStrain = this->MaxStrain;
     press.servoAlpha = this->ServoAlpha;
     press.sampleInterval = this->SampleInterval;
+    press.gripLength = this->GripLength;
     dem::validate(press);
     if (!(this->FrameInterval > 0.0) || !std::isfinite(this->FrameInterval))
     {
@@ -594,6 +596,13 @@ int vtkDEMLoadTest::RequestData(
   this->LateralStress = me.lateralStress;
   this->DeviatorStress = me.deviatorStress;
   this->PeakStress = in.Model.test.peakStress;
+  const dem::TestMode testMode = in.Model.test.settings.mode;
+  this->BrazilianStrength = testMode == dem::TestMode::Brazilian ? in.Model.test.peakStress : 0.0;
+  this->TensileStrength = testMode == dem::TestMode::Tension ? std::abs(in.Model.test.peakStress) : 0.0;
+  const std::array<double, 2> disc = testMode == dem::TestMode::Brazilian
+    ? dem::brazilianDisc(in.Model) : std::array<double, 2>{ { 0.0, 0.0 } };
+  this->DiscDiameter = disc[0];
+  this->DiscThickness = disc[1];
   this->InertialNumber = me.inertialNumber;
   this->SuggestedStrainRate = me.suggestedStrainRate;
   const double dataTime = static_cast<double>(in.Frame) * this->FrameInterval;
@@ -657,6 +666,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxStrain: " << this->MaxStrain << "\n";
   os << indent << "ServoAlpha: " << this->ServoAlpha << "\n";
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
+  os << indent << "GripLength: " << this->GripLength << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
   os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";
   os << indent << "CheckpointEvery: " << this->CheckpointEvery << "\n";
