@@ -27,21 +27,11 @@ double solidVolume(const Model& m)
   return v;
 }
 
-/// A dense 2D section pack: n discs with radii in [rmin, rmax] m grown in a square of the
-/// given side (m), slab thickness `slab` (m), without gravity.
+/// A grown 2D section pack: n discs with radii in [rmin, rmax] m in a square of the given
+/// side (m), slab thickness `slab` (m), without gravity.
 Model section2DPack(int n, double side, double slab, double rmin, double rmax, std::uint64_t seed = 1)
 {
-  Model m;
-  m.domain.section2D = true;
-  m.domain.size = Vec3(side, side, slab);
-  m.material.youngsModulus = 1e8;
-  m.gravity.setZero();
-  PackParameters p;
-  p.initialElements = n;
-  p.minimumSize = rmin;
-  p.maximumSize = rmax;
-  p.randomSeed = seed;
-  buildPack(m, p);
+  Model m = dem::testing::placedPack(Vec3(side, side, slab), true, n, rmin, rmax, seed);
   growElements(m);
   return m;
 }
