@@ -79,6 +79,11 @@ def show_test_chart(load_test, view=None, shear_only=True):
     shear_only (default) a test that has a shear stage plots only its shear rows (Stage
     2, picked by an ExtractSelection with the row query ``Stage == 2``): a triaxial
     test's consolidation rows would otherwise run to the consolidation strain and back.
+    The query goes into the selection the way the GUI builds one (an AppendSelections
+    of the query): ParaView 5.11's Properties panel expects that form and crashes on an
+    Apply when an ExtractSelection's Selection is a bare selection source.
+    In the GUI the DEM Test dock (View > DEM Test) is the chart; this helper is for
+    pvbatch pictures.
     A test without shear rows (Isotropic) plots every row. The chart shows the test as
     far as it has been run (or to its last time step when it has not been run yet).
     Creates an XYChartView unless one is given; returns the view.
@@ -95,8 +100,7 @@ def show_test_chart(load_test, view=None, shear_only=True):
     if shear_only:
         stage = fetch_history(load_test).get("Stage")
         if stage is not None and (_np().asarray(stage) == STAGE_SHEAR).any():
-            query = _simple.SelectionQuerySource(ElementType="Row Data", QueryString="Stage == %d" % STAGE_SHEAR)
-            history = _simple.ExtractSelection(Input=history, Selection=query)
+            history = _simple.ExtractSelection(Input=history, Selection=_row_query("Stage == %d" % STAGE_SHEAR))
     display = _simple.Show(history, view, "XYChartRepresentation")
     display.UseIndexForXAxis = 0
     display.XArrayName = "Axial Strain (%)"
@@ -113,6 +117,14 @@ def show_test_chart(load_test, view=None, shear_only=True):
     view.LeftAxisTitle = "Stress (MPa)"
     view.RightAxisTitle = "Volumetric Strain (%)"
     return view
+
+
+def _row_query(query):
+    """A selection of table rows by a query, in the form the GUI builds: an AppendSelections
+    proxy whose one input is the SelectionQuerySource (pqSelectionInputWidget reads the
+    selection's Input property; a bare SelectionQuerySource has none)."""
+    source = _simple.SelectionQuerySource(ElementType="Row Data", QueryString=query)
+    return _simple.AppendSelections(Input=[source], Expression="s0", SelectionNames=["s0"])
 
 
 # ---------------------------------------------------------------------------------------
