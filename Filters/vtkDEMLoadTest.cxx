@@ -578,7 +578,7 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   else
   {
     // Settling, or a consolidation: publish some frames, more as it goes on.
-    in.Published = untilDone ? 20 : this->NumberOfFrames;
+    in.Published = untilDone ? 50 : this->NumberOfFrames;
   }
   in.Frame = 0;
   in.Checkpoints[0] = in.Model;
@@ -957,6 +957,7 @@ int vtkDEMLoadTest::RequestData(
     vtkErrorMacro(<< e.what());
     this->StatusText = e.what();
     this->StageText = "idle";
+    this->Finished = 0;
     this->EstimatedSteps = 0.0;
     this->EstimatedRunTime = 0.0;
     output->Initialize();
@@ -974,6 +975,8 @@ int vtkDEMLoadTest::RequestData(
     // stops at Stage done, as rockdem.run_test does, never asks for the last frame).
     this->WriteCheckpoint();
   }
+  this->Finished = in.FinishFrame >= 0 ? (in.Frame >= in.FinishFrame ? 1 : 0)
+                                         : (this->NumberOfFrames > 0 && in.Frame >= this->LastFrame() ? 1 : 0);
   rockdem::ModelToMultiBlock(in.Model, output);
   if (auto* particles = vtkPolyData::SafeDownCast(output->GetBlock(0)))
   {

@@ -251,6 +251,10 @@ public:
   /// Read-only: steps in one frame of the current run (0 before it has run).
   vtkGetMacro(FrameSteps, vtkIdType);
 
+  /// Read-only: 1 when the current frame is the end of the run (its last frame, or with
+  /// Number Of Frames 0 the frame where the test finished or the model settled).
+  vtkGetMacro(Finished, int);
+
   /// Read-only: how many times the published time steps changed (the stage learns its
   /// timestep, how many frames a test needs, and where it finished, as it runs).
   int GetTimeStepsRevision();
@@ -332,6 +336,7 @@ protected:
   double EstimatedRunTime = 0.0;
   double MeasuredThroughput = 0.0;
   vtkIdType FrameSteps = 0;
+  int Finished = 0;
   std::string LastExportMessage;
 
 private:

@@ -50,6 +50,27 @@ bool pqRockDEMAutoStart::isLoadTest(pqPipelineSource* source)
 
 void pqRockDEMAutoStart::startup()
 {
+  // The animation manager exists once the application core is built (a plugin found on
+  // PV_PLUGIN_PATH starts while it is being built): connect to it afterwards.
+  QTimer::singleShot(0, this, [this]() {
+    pqAnimationManager* manager = pqPVApplicationCore::instance()
+      ? pqPVApplicationCore::instance()->animationManager()
+      : nullptr;
+    if (!manager)
+    {
+      return;
+    }
+    auto connectScene = [this](pqAnimationScene* scene) {
+      if (scene)
+      {
+        QObject::connect(scene,
+          QOverload<vtkObject*, unsigned long, void*, void*>::of(&pqAnimationScene::endPlay), this,
+          &pqRockDEMAutoStart::onEndPlay, Qt::UniqueConnection);
+      }
+    };
+    QObject::connect(manager, &pqAnimationManager::activeSceneChanged, this, connectScene);
+    connectScene(manager->getActiveScene());
+  });
   pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
   QObject::connect(
     model, &pqServerManagerModel::sourceAdded, this, &pqRockDEMAutoStart::onSourceAdded);
@@ -118,62 +139,116 @@ void pqRockDEMAutoStart::refreshReadOnlyValues()
     }
     if (auto* test = vtkSMDEMLoadTestProxy::SafeDownCast(source->getProxy()))
     {
-      // A finished test ends the animation at its last frame.
+      // The end of a run (a test finished, a model settled) ends the animation there.
       pqAnimationManager* manager = pqPVApplicationCore::instance()->animationManager();
       pqAnimationScene* scene = manager ? manager->getActiveScene() : nullptr;
-      const char* stage = vtkSMPropertyHelper(test, "Stage", true).GetAsString();
-      if (scene && stage && std::strcmp(stage, "done") == 0 &&
-        vtkSMPropertyHelper(test, "Mode").GetAsInt() != 0 &&
-        source->property("RockDEMStoppedAtDone").toBool() == false)
+      const bool finished = vtkSMPropertyHelper(test, "Finished", true).GetAsInt() != 0;
+      const bool visible = !source->getRepresentations(nullptr).isEmpty();
+      if (scene && finished && visible && !source->property("RockDEMStoppedAtEnd").toBool())
       {
-        source->setProperty("RockDEMStoppedAtDone", true);
+        source->setProperty("RockDEMStoppedAtEnd", true);
         scene->pause();
       }
-      else if (stage && std::strcmp(stage, "done") != 0)
+      else if (!finished)
       {
-        source->setProperty("RockDEMStoppedAtDone", false);
+        source->setProperty("RockDEMStoppedAtEnd", false);
       }
     }
   }
 }
 
-void pqRockDEMAutoStart::onRepresentationAdded(pqRepresentation* representation)
+void pqRockDEMAutoStart::onEndPlay()
 {
-  auto* dataRep = qobject_cast<pqDataRepresentation*>(representation);
-  pqPipelineSource* source = dataRep ? dataRep->getInput() : nullptr;
-  pqOutputPort* port = dataRep ? dataRep->getOutputPortFromInput() : nullptr;
-  if (!source || !port || port->getPortNumber() != 0 || !source->getProxy()->GetXMLName() ||
-    std::strcmp(source->getProxy()->GetXMLName(), "DEMFracturesToDFN") != 0)
+  pqAnimationManager* manager = pqPVApplicationCore::instance()->animationManager();
+  pqAnimationScene* scene = manager ? manager->getActiveScene() : nullptr;
+  if (!scene)
   {
     return;
   }
-  // After the representation is initialised (this signal comes from inside Show()).
-  QPointer<pqDataRepresentation> guarded(dataRep);
-  QTimer::singleShot(0, this, [guarded]() {
+  // Play ran to the end of the frames known when it started. A DEM Load Test that learnt
+  // of more frames meanwhile (Number Of Frames 0) and has not finished goes on.
+  const double reached = scene->getAnimationTime();
+  const double end = scene->getClockTimeRange().second;
+  if (reached < end)
+  {
+    return; // paused or stopped by the user
+  }
+  QPointer<pqAnimationScene> guarded(scene);
+  QTimer::singleShot(0, this, [this, guarded, reached]() {
+    this->refreshReadOnlyValues();
     if (!guarded)
     {
       return;
     }
-    vtkSMProxy* rep = guarded->getProxy();
-    if (!vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Set", 1 /* cells */))
+    pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+    for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
     {
-      return;
+      auto* test = vtkSMDEMLoadTestProxy::SafeDownCast(source->getProxy());
+      if (test && !source->getRepresentations(nullptr).isEmpty() &&
+        vtkSMPropertyHelper(test, "Finished", true).GetAsInt() == 0 &&
+        guarded->getClockTimeRange().second > reached)
+      {
+        guarded->play();
+        return;
+      }
     }
-    vtkNew<vtkSMTransferFunctionManager> manager;
-    vtkSMProxy* lut = manager->GetColorTransferFunction("Set", rep->GetSessionProxyManager());
-    vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
-    vtkSMPropertyHelper(lut, "AnnotationsInitialized").Set(1);
-    const char* annotations[] = { "0", "tensile", "1", "shear", "2", "inherited" };
-    vtkSMPropertyHelper annotate(lut, "Annotations");
-    annotate.SetNumberOfElements(6);
-    for (unsigned int k = 0; k < 6; ++k)
-    {
-      annotate.Set(k, annotations[k]);
-    }
-    const double colors[] = { 0.85, 0.15, 0.15, 0.15, 0.35, 0.85, 0.2, 0.7, 0.2 };
-    vtkSMPropertyHelper(lut, "IndexedColors").Set(colors, 9);
-    lut->UpdateVTKObjects();
-    rep->UpdateVTKObjects();
-    guarded->renderViewEventually();
   });
+}
+
+void pqRockDEMAutoStart::onRepresentationAdded(pqRepresentation* representation)
+{
+  // The representation knows its input, and is initialised, once Show() has returned.
+  QPointer<pqDataRepresentation> guarded(qobject_cast<pqDataRepresentation*>(representation));
+  QTimer::singleShot(0, this, [guarded]() {
+    if (guarded)
+    {
+      colorByDefault(guarded);
+    }
+  });
+}
+
+void pqRockDEMAutoStart::colorByDefault(pqDataRepresentation* representation)
+{
+  pqPipelineSource* source = representation->getInput();
+  pqOutputPort* port = representation->getOutputPortFromInput();
+  vtkSMProxy* rep = representation->getProxy();
+  if (!source || !port || port->getPortNumber() != 0 || !rep->GetProperty("ColorArrayName"))
+  {
+    return;
+  }
+  if (isLoadTest(source))
+  {
+    // A stepping model is coloured by how far its particles moved (the GUI would otherwise
+    // carry the input's colouring, Radius, over).
+    if (vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Displacement", 0 /* points */))
+    {
+      vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(rep, false, false);
+      rep->UpdateVTKObjects();
+      representation->renderViewEventually();
+    }
+    return;
+  }
+  if (!source->getProxy()->GetXMLName() ||
+    std::strcmp(source->getProxy()->GetXMLName(), "DEMFracturesToDFN") != 0 ||
+    !vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Set", 1 /* cells */))
+  {
+    return;
+  }
+  // The fracture sets: categorical, tensile red, shear blue, inherited green.
+  vtkNew<vtkSMTransferFunctionManager> manager;
+  vtkSMProxy* lut = manager->GetColorTransferFunction("Set", rep->GetSessionProxyManager());
+  vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
+  vtkSMPropertyHelper(lut, "AnnotationsInitialized").Set(1);
+  const char* annotations[] = { "0", "tensile", "1", "shear", "2", "inherited" };
+  vtkSMPropertyHelper annotate(lut, "Annotations");
+  annotate.SetNumberOfElements(6);
+  for (unsigned int k = 0; k < 6; ++k)
+  {
+    annotate.Set(k, annotations[k]);
+  }
+  const double colors[] = { 0.85, 0.15, 0.15, 0.15, 0.35, 0.85, 0.2, 0.7, 0.2 };
+  vtkSMPropertyHelper(lut, "IndexedColors").Set(colors, 9);
+  lut->UpdateVTKObjects();
+  rep->UpdateVTKObjects();
+  representation->renderViewEventually();
 }

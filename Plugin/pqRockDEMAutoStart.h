@@ -9,8 +9,11 @@
  *   Properties panel shows what was just computed.
  * - A DEM Load Test applied for the first time is shown at its first frame (the animation
  *   time goes to it), so Apply computes nothing ahead; Play then runs frame by frame.
- * - A DEM Load Test whose test finished (Stage done) stops a running animation there.
- * - DEM Fractures To DFN discs are coloured by Set with the fracture sets' categorical map.
+ * - Play follows a DEM Load Test to the end of its run: it stops where the test finished
+ *   (or the model settled), and when a stage with Number Of Frames 0 published more frames
+ *   while it played (it learns how many it needs as it runs), Play goes on.
+ * - A DEM Load Test's particles are coloured by their Displacement; DEM Fractures To DFN
+ *   discs by Set, with the fracture sets' categorical map.
  *
  * Particles are drawn at their true size by the "DEM Spheres" representation (RockDEM.xml)
  * and FailureMode gets a categorical colour map from vtkSMDEMDefaults: both work without
@@ -23,6 +26,7 @@
 #include <QPointer>
 #include <QTimer>
 
+class pqDataRepresentation;
 class pqPipelineSource;
 class pqRepresentation;
 class pqServerManagerModelItem;
@@ -45,12 +49,16 @@ public:
   /// Whether it is a DEM Load Test.
   static bool isLoadTest(pqPipelineSource* source);
 
+  /// The default colouring of a RockDEM output (see the class description).
+  static void colorByDefault(pqDataRepresentation* representation);
+
 private Q_SLOTS:
   void onSourceAdded(pqPipelineSource* source);
   void onModifiedStateChanged(pqServerManagerModelItem* item);
   void onViewAdded(pqView* view);
   void onRepresentationAdded(pqRepresentation* representation);
   void refreshReadOnlyValues();
+  void onEndPlay();
 
 private:
   Q_DISABLE_COPY(pqRockDEMAutoStart)

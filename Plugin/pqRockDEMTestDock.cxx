@@ -122,7 +122,10 @@ pqRockDEMTestDock::pqRockDEMTestDock(QWidget* parent)
   layout->addWidget(this->StatusLabel);
   layout->addWidget(this->EstimateLabel);
   layout->addWidget(this->ExportButton, 0, Qt::AlignLeft);
+  body->setObjectName("Body");
   this->setWidget(body);
+  // Hidden until a test is started (or View > DEM Test shows it).
+  this->hide();
 
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   this->ChartWidget->setRenderWindow(window);
@@ -327,9 +330,14 @@ void pqRockDEMTestDock::refresh()
     return;
   }
   plotRows(vtkTable::SafeDownCast(algorithm->GetOutputDataObject(1)), this->Plotted);
-  this->Chart->SetTitle(this->Plotted->GetNumberOfRows() > 0 ? "" : "No test history yet");
+  const bool curve = this->Plotted->GetNumberOfRows() >= 2;
+  this->Chart->SetTitle(curve ? "" : "No test history yet: Play runs the test");
   for (const Series& s : PlottedSeries)
   {
+    if (!curve)
+    {
+      break;
+    }
     vtkPlot* line = this->Chart->AddPlot(vtkChart::LINE);
     line->SetInputData(this->Plotted, StrainColumn, s.column);
     line->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], 255);

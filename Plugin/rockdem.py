@@ -11,18 +11,16 @@ from paraview import simple as _simple
 def show_particles(source, view=None, port=0, color_by="Radius"):
     """Show a RockDEM model's particles as spheres of their true radius.
 
-    Point Gaussian representation with the Sphere shader, scaled by the Radius point
-    array with no scale function, so the drawn radius equals the particle radius (m).
-    Returns the representation.
+    The "DEM Spheres" representation (RockDEM.xml: a Point Gaussian with the Sphere
+    shader, scaled by the Radius point array with no scale function), so the drawn radius
+    equals the particle radius (m); RockDEM models get it by default, this sets it again
+    for an output shown otherwise. Returns the representation.
     """
     view = view or _simple.GetActiveViewOrCreate("RenderView")
     display = _simple.Show(_simple.OutputPort(source, port), view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.ScaleByArray = 1
-    display.SetScaleArray = ["POINTS", "Radius"]
-    display.UseScaleFunction = 0
-    display.GaussianRadius = 1.0
+    # The plugin's representation: a Point Gaussian whose defaults draw a point as a sphere
+    # of its Radius (Sphere shader, scaled by Radius, no scale function, Gaussian Radius 1).
+    display.SetRepresentationType("DEM Spheres")
     if color_by:
         _simple.ColorBy(display, ("POINTS", color_by))
         display.RescaleTransferFunctionToDataRange(True, False)
@@ -136,6 +134,11 @@ def _row_query(query):
 
 #: Rows of the History table whose Stage is this are the shear (loading) stage.
 STAGE_SHEAR = 2
+
+#: A time that asks a DEM Load Test for the end of its run: its last frame, or with
+#: NumberOfFrames 0 the frame where the test finishes (``lt.UpdatePipeline(END_OF_RUN)``).
+#: Stages downstream of a load test (DEM Cement) read it there.
+END_OF_RUN = 1.0e300
 
 
 def _np():
@@ -294,9 +297,9 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
     NumberOfFrames are not given, 20 frames spanning 1.05 x MaxStrain / StrainRate of model
     time are used (plus as much again for a Triaxial consolidation).
 
-    The test is run to its last time step (UpdatePipeline at the last TimestepValues
-    entry); with stop_when_done (default) it is advanced frame by frame and stops at
-    the first frame where Stage is 'done'. progress, when given, is called with
+    The test is run to the end of its run (its last frame, or with NumberOfFrames 0 the
+    frame where it finishes); with stop_when_done (default) it is advanced frame by frame
+    and stops at the first frame where Stage is 'done'. progress, when given, is called with
     (frame, proxy) after each frame. The History (port 1) is fetched into a dict of
     numpy arrays.
     """
@@ -313,20 +316,23 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
         props["FrameInterval"] = duration / frames
         props["NumberOfFrames"] = frames
     test = _filter("DEMLoadTest")(Input=model_source, Mode=mode, **props)
-    times = list(test.TimestepValues) or [0.0]
     if stop_when_done and mode != "Off":
-        for k, t in enumerate(times):
-            if k == 0 and len(times) > 1:
-                continue
-            test.UpdatePipeline(t)
+        # Frame by frame. The list is read again after every frame: once the stage has run
+        # its frames are the model's times, and with NumberOfFrames 0 it grows as needed.
+        test.UpdatePipeline(0.0)
+        k = 1
+        while k < len(test.TimestepValues or []):
+            test.UpdatePipeline(list(test.TimestepValues)[k])
             if progress:
                 progress(k, test)
             if read_only(test, "Stage") == "done":
                 break
+            k += 1
     else:
-        test.UpdatePipeline(times[-1])
+        # The end of the run (with NumberOfFrames 0: where the test finishes).
+        test.UpdatePipeline(END_OF_RUN)
         if progress:
-            progress(len(times) - 1, test)
+            progress(len(test.TimestepValues or [0.0]) - 1, test)
     status = read_only(test, "Status")
     if test.GetDataInformation().GetNumberOfPoints() == 0:
         raise RuntimeError("DEM Load Test (%s) gave no output: %s" % (mode, status))
