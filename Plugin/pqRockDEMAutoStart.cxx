@@ -197,6 +197,10 @@ void pqRockDEMAutoStart::onEndPlay()
 
 void pqRockDEMAutoStart::onRepresentationAdded(pqRepresentation* representation)
 {
+  if (pqApplicationCore::instance()->isLoadingState())
+  {
+    return; // a saved state keeps the colouring it was saved with
+  }
   // The representation knows its input, and is initialised, once Show() has returned.
   QPointer<pqDataRepresentation> guarded(qobject_cast<pqDataRepresentation*>(representation));
   QTimer::singleShot(0, this, [guarded]() {
@@ -228,9 +232,22 @@ void pqRockDEMAutoStart::colorByDefault(pqDataRepresentation* representation)
     }
     return;
   }
-  if (!source->getProxy()->GetXMLName() ||
-    std::strcmp(source->getProxy()->GetXMLName(), "DEMFracturesToDFN") != 0 ||
-    !vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Set", 1 /* cells */))
+  const char* name = source->getProxy()->GetXMLName();
+  if (!name || std::strcmp(name, "DEMFracturesToDFN") != 0)
+  {
+    // Another RockDEM model left uncoloured (a state file opened with File > Open):
+    // coloured by Radius, like a pack.
+    const char* colored = vtkSMPropertyHelper(rep, "ColorArrayName").GetInputArrayNameToProcess();
+    if (isRockDEM(source) && (!colored || !*colored) &&
+      vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Radius", 0 /* points */))
+    {
+      vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(rep, false, false);
+      rep->UpdateVTKObjects();
+      representation->renderViewEventually();
+    }
+    return;
+  }
+  if (!vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Set", 1 /* cells */))
   {
     return;
   }

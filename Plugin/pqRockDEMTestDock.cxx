@@ -47,12 +47,13 @@ struct Series
   const char* column;
   unsigned char rgb[3];
   int corner; ///< 0 left axis (stress), 1 right axis (volumetric strain)
+  int line;   ///< vtkPen line type: the deviator is dashed (unconfined it equals the axial)
 };
 const Series PlottedSeries[] = {
-  { "Axial Stress (MPa)", { 214, 39, 40 }, 0 },
-  { "Lateral Stress (MPa)", { 31, 119, 180 }, 0 },
-  { "Deviator Stress (MPa)", { 255, 127, 14 }, 0 },
-  { "Volumetric Strain (%)", { 44, 160, 44 }, 1 },
+  { "Axial Stress (MPa)", { 214, 39, 40 }, 0, vtkPen::SOLID_LINE },
+  { "Lateral Stress (MPa)", { 31, 119, 180 }, 0, vtkPen::SOLID_LINE },
+  { "Deviator Stress (MPa)", { 255, 127, 14 }, 0, vtkPen::DASH_LINE },
+  { "Volumetric Strain (%)", { 44, 160, 44 }, 1, vtkPen::SOLID_LINE },
 };
 constexpr double ShearStage = 2.0; ///< the Stage column's value during shear
 constexpr qint64 RefreshPeriodMs = 500; ///< at most twice a second
@@ -342,6 +343,7 @@ void pqRockDEMTestDock::refresh()
     line->SetInputData(this->Plotted, StrainColumn, s.column);
     line->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], 255);
     line->SetWidth(2.0);
+    line->GetPen()->SetLineType(s.line);
     this->Chart->SetPlotCorner(line, s.corner);
   }
   this->Chart->RecalculateBounds();

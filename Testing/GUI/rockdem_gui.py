@@ -12,12 +12,24 @@ import time
 from paraview import simple
 
 OUT = os.environ.get("ROCKDEM_GUI_OUT", ".")
+#: Where the test's input files are (a state file, a saved state), run_gui_test.py --data-dir.
+DATA = os.environ.get("ROCKDEM_GUI_DATA", ".")
 _t0 = [time.time()]
 
 
 def _write(line):
     with open(os.path.join(OUT, "checks.txt"), "a") as f:
         f.write(line + "\n")
+
+
+def _record_exception(kind, value, trace, _previous=__import__("sys").excepthook):
+    """A Python line that raises fails the test, with the exception in checks.txt."""
+    import traceback
+    _write("FAIL - Python raised %s" % "".join(traceback.format_exception_only(kind, value)).strip())
+    _previous(kind, value, trace)
+
+
+__import__("sys").excepthook = _record_exception
 
 
 def check(condition, what):

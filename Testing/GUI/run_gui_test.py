@@ -55,6 +55,7 @@ def main():
 
     env = dict(os.environ)
     env["ROCKDEM_GUI_OUT"] = args.out
+    env["ROCKDEM_GUI_DATA"] = args.data_dir
     env["PYTHONPATH"] = HERE + os.pathsep + env.get("PYTHONPATH", "")
     env["PYTHONDONTWRITEBYTECODE"] = "1"
     env.pop("PV_PLUGIN_PATH", None)
