@@ -24,10 +24,13 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
 
+#include <dlfcn.h>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -111,9 +114,13 @@ void HistoryToTable(const dem::LoadTestState& test, int axis, vtkTable* table)
   }
 }
 
-/// Ctrl-C (SIGINT) while a stage steps stops it at the next batch (pvpython and pvbatch
-/// raise KeyboardInterrupt afterwards) instead of leaving a run of unknown length
-/// unstoppable. The handler is installed only while the stage steps.
+/// Ctrl-C (SIGINT) while a stage steps stops it at the next batch (at the last whole
+/// frame) instead of killing the program with the run half done: pvpython and pvbatch end
+/// on SIGINT (their handler is a crash handler), and a run of unknown length must be
+/// stoppable. The handler is installed only while the stage steps; afterwards the stage
+/// stays stopped until a property changes, so a script's loop over frames ends too, and a
+/// second Ctrl-C ends the program as before. In a Python that handles SIGINT itself (a
+/// plain python importing paraview) Python is told, so it raises KeyboardInterrupt.
 std::atomic<bool> Interrupted{ false };
 extern "C" void OnInterrupt(int)
 {
@@ -130,12 +137,18 @@ public:
   ~InterruptGuard()
   {
     std::signal(SIGINT, this->Previous);
-    // Hand the interrupt on to a handler that wants it (Python's raises KeyboardInterrupt);
-    // never to the default action, which would end the program.
+    Dl_info owner;
     if (Interrupted && this->Previous != SIG_DFL && this->Previous != SIG_IGN &&
-      this->Previous != SIG_ERR)
+      this->Previous != SIG_ERR && dladdr(reinterpret_cast<void*>(this->Previous), &owner) &&
+      owner.dli_fname && std::strstr(owner.dli_fname, "python"))
     {
-      std::raise(SIGINT);
+      // Python's own handler was in place: tell Python (found at run time, the filters do
+      // not depend on Python), which raises KeyboardInterrupt.
+      using SetInterrupt = void (*)();
+      if (auto notify = reinterpret_cast<SetInterrupt>(dlsym(RTLD_DEFAULT, "PyErr_SetInterrupt")))
+      {
+        notify();
+      }
     }
   }
   InterruptGuard(const InterruptGuard&) = delete;
@@ -239,6 +252,7 @@ struct vtkDEMLoadTest::vtkInternals
   int SavedFrame = -1;     ///< frame last written to SavedPath (-1: none since the rebuild)
   std::string SavedPath;
   std::uint64_t Run = 0;   ///< fingerprint of this run (input and settings), for checkpoints
+  std::string Stopped;     ///< why the run was stopped (Ctrl-C, abort); empty: it runs
 };
 
 void vtkDEMLoadTest::SetCheckpointFile(const char* path)
@@ -506,6 +520,7 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   vtkInternals& in = *this->Internals;
   in.Valid = false;
   in.Failed = false;
+  in.Stopped.clear();
   in.Checkpoints.clear();
   in.Simulation.reset();
   in.SavedFrame = -1;
@@ -749,6 +764,7 @@ int vtkDEMLoadTest::RequestData(
   const auto start = std::chrono::steady_clock::now();
   const int revision = in.Revision;
   std::string stopped;
+  int frameAsked = 0;
   try
   {
     if (this->Mode < MODE_OFF || this->Mode > MODE_ISOTROPIC)
@@ -818,6 +834,7 @@ int vtkDEMLoadTest::RequestData(
       requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
     }
     int frame = this->FrameOf(requested);
+    frameAsked = frame;
     // The end of the run (what a stage downstream asks for): with Number Of Frames 0,
     // until the test finishes.
     const bool toEnd = requested >= rockdem::EndOfRun;
@@ -849,6 +866,7 @@ int vtkDEMLoadTest::RequestData(
     auto lastStatus = std::chrono::steady_clock::now() - std::chrono::seconds(2);
     const std::int64_t totalSteps = (frame - in.Frame) * in.StepsPerFrame;
     std::int64_t done = 0;
+    stopped = in.Stopped;
     while (in.Frame < frame && !in.Failed && stopped.empty())
     {
       std::int64_t remaining = in.StepsPerFrame;
@@ -857,6 +875,7 @@ int vtkDEMLoadTest::RequestData(
         if (Interrupted || this->GetAbortExecute())
         {
           stopped = Interrupted ? "interrupted (Ctrl-C)" : "aborted";
+          in.Stopped = stopped;
           break;
         }
         const std::int64_t batch = std::min<std::int64_t>(remaining, this->StepsPerBatch);
@@ -1040,7 +1059,7 @@ int vtkDEMLoadTest::RequestData(
          << d.step << ")";
     if (!stopped.empty())
     {
-      line << " - " << stopped << ": stopped at the last whole frame";
+      line << " - " << stopped << ": stopped at the last whole frame (change a property to run again)";
     }
     else if (in.FinishFrame >= 0 && in.Frame >= in.FinishFrame)
     {
@@ -1055,10 +1074,10 @@ int vtkDEMLoadTest::RequestData(
          << in.Simulation->path();
     this->StatusText = line.str();
     vtkOutputWindowDisplayText(("DEM Load Test: " + line.str() + "\n").c_str());
-    if (!stopped.empty())
+    if (!stopped.empty() && stopped == in.Stopped && frameAsked > in.Frame)
     {
       vtkWarningMacro(<< "the run was " << stopped << " at frame " << in.Frame
-                      << "; ask for a later time to go on.");
+                      << "; it stays there until a property changes.");
     }
   }
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), dataTime);

@@ -28,7 +28,8 @@
  * it takes (Estimated Run Time, from a short measurement of this model's stepping speed)
  * and says so in Output Messages, as a warning when it is long. Steps Per Batch bounds the
  * steps between progress updates. A run can be stopped between batches: Ctrl-C (SIGINT)
- * in pvpython or pvbatch, or AbortExecute; the output is then the last whole frame.
+ * in pvpython or pvbatch, or AbortExecute; the output is then the last whole frame, and the
+ * stage stays there until a property changes (a second Ctrl-C ends pvpython as before).
  *
  * If the run goes unstable it stops with an error naming the cause and outputs the
  * last good state.

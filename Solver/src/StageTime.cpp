@@ -70,7 +70,19 @@ TestEstimate estimateRemainingTestSteps(const Model& model, double timestep)
   }
   const double remaining = std::max(0.0, s.maxStrain - reached);
   const double seconds = s.strainRate > 0.0 ? remaining / s.strainRate : 0.0; // model time
-  const double steps = timestep > 0.0 ? std::ceil(seconds / timestep) : 0.0;
+  double steps = timestep > 0.0 ? std::ceil(seconds / timestep) : 0.0;
+  // The test notices Max Strain when it samples (every Sample Interval steps): it ends at
+  // the first sample at or after that step.
+  const double interval = static_cast<double>(std::max<std::int64_t>(1, s.sampleInterval));
+  const double first = interval - static_cast<double>(t.stepsSinceSample);
+  if (steps > first)
+  {
+    steps = first + std::ceil((steps - first) / interval) * interval;
+  }
+  else
+  {
+    steps = first;
+  }
   e.steps = static_cast<std::int64_t>(std::min(steps, 9.0e18));
   std::ostringstream line;
   line << "shear from axial strain " << formatValue(reached) << " to Max Strain "

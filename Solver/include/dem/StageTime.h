@@ -29,7 +29,8 @@ constexpr std::int64_t MaxFrames = 100000;
 
 /// How far a load test still has to run, in physics steps at `timestep` (s), from the
 /// test state in the model: the shear stage runs until the axial strain reaches Max
-/// Strain at the Strain Rate (the strain reached so far is the last history row's); a
+/// Strain at the Strain Rate (the strain reached so far is the last history row's), and
+/// ends at the first history sample (every Sample Interval steps) from there; a
 /// consolidation ends when the servo faces have settled, which cannot be known ahead.
 struct TestEstimate {
   std::int64_t steps = 0; ///< steps still to run for the parts that can be estimated
