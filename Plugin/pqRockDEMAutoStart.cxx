@@ -223,10 +223,20 @@ void pqRockDEMAutoStart::colorByDefault(pqDataRepresentation* representation)
   if (isLoadTest(source))
   {
     // A stepping model is coloured by how far its particles moved (the GUI would otherwise
-    // carry the input's colouring, Radius, over).
+    // carry the input's colouring, Radius, over), with the legend of that colouring only.
+    pqView* view = representation->getView();
+    vtkSMProxy* viewProxy = view ? view->getProxy() : nullptr;
+    if (viewProxy)
+    {
+      vtkSMPVRepresentationProxy::SetScalarBarVisibility(rep, viewProxy, false);
+    }
     if (vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Displacement", 0 /* points */))
     {
       vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(rep, false, false);
+      if (viewProxy)
+      {
+        vtkSMPVRepresentationProxy::SetScalarBarVisibility(rep, viewProxy, true);
+      }
       rep->UpdateVTKObjects();
       representation->renderViewEventually();
     }
