@@ -16,8 +16,6 @@
 #include <vtkCellArray.h>
 #include <vtkSmartPointer.h>
 
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -122,32 +120,15 @@ std::string CheckpointRecordPath(const std::string& checkpoint)
 
 void WriteCheckpointRecord(const std::string& checkpoint, const CheckpointRecord& record)
 {
-  const std::string path = CheckpointRecordPath(checkpoint);
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::out | std::ios::trunc);
-    if (!out)
-    {
-      throw std::runtime_error("cannot write '" + temporary + "': " + std::strerror(errno));
-    }
-    out << "RockDEM checkpoint record: the DEM Load Test run that wrote " << checkpoint << "\n"
-        << "run " << std::hex << record.run << std::dec << "\n"
-        << "steps-per-frame " << record.stepsPerFrame << "\n"
-        << "frame " << record.frame << "\n"
-        << "finished " << (record.finished ? 1 : 0) << "\n";
-    out.flush();
-    if (!out)
-    {
-      std::remove(temporary.c_str());
-      throw std::runtime_error("writing '" + temporary + "' failed: " + std::strerror(errno));
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot rename '" + temporary + "' to '" + path + "': " + reason);
-  }
+  std::ostringstream out;
+  out << "RockDEM checkpoint record: the DEM Load Test run that wrote " << checkpoint << "\n"
+      << "run " << std::hex << record.run << std::dec << "\n"
+      << "steps-per-frame " << record.stepsPerFrame << "\n"
+      << "frame " << record.frame << "\n"
+      << "finished " << (record.finished ? 1 : 0) << "\n";
+  const std::string text = out.str();
+  // The engine's atomic writer: a temporary file renamed over the record.
+  dem::writeFileAtomically(CheckpointRecordPath(checkpoint), text.data(), text.size());
 }
 
 bool ReadCheckpointRecord(const std::string& checkpoint, CheckpointRecord& record)

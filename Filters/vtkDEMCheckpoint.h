@@ -37,8 +37,8 @@ struct CheckpointRecord
 /// run.rdem -> run.rdem.stage
 std::string CheckpointRecordPath(const std::string& checkpoint);
 
-/// Writes the record (temporary file renamed over it). Throws std::runtime_error naming
-/// the file when it cannot be written.
+/// Writes the record (dem::writeFileAtomically: a temporary file renamed over it). Throws
+/// naming the file and the reason when it cannot be written.
 void WriteCheckpointRecord(const std::string& checkpoint, const CheckpointRecord& record);
 
 /// Reads the record; false when there is none or it is not a record.

@@ -193,42 +193,34 @@ std::string Duration(double seconds)
 /// A run longer than this is announced as a warning (Output Messages pops up).
 constexpr double LongRunSeconds = 600.0;
 
-/// Writes the table as CSV (quoted header, full precision) to a temporary name beside
-/// the target, then renames it over the target: a crash never leaves a half-written file.
+/// Writes the table as CSV (quoted header, full precision) with the engine's atomic
+/// writer (dem::writeFileAtomically): a crash never leaves a half-written file, and a
+/// failure says why (the system's reason).
 void WriteTableCSV(vtkTable* table, const std::string& path)
 {
-  const std::string temporary = path + ".tmp";
+  std::ostringstream out;
+  const vtkIdType columns = table->GetNumberOfColumns();
+  for (vtkIdType c = 0; c < columns; ++c)
   {
-    std::ofstream out(temporary, std::ios::out | std::ios::trunc);
-    if (!out)
-    {
-      throw std::runtime_error("History File: cannot write '" + temporary + "'.");
-    }
-    const vtkIdType columns = table->GetNumberOfColumns();
+    out << (c ? "," : "") << '"' << table->GetColumnName(c) << '"';
+  }
+  out << "\n" << std::setprecision(17);
+  for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+  {
     for (vtkIdType c = 0; c < columns; ++c)
     {
-      out << (c ? "," : "") << '"' << table->GetColumnName(c) << '"';
+      out << (c ? "," : "") << vtkDoubleArray::SafeDownCast(table->GetColumn(c))->GetValue(r);
     }
-    out << "\n" << std::setprecision(17);
-    for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
-    {
-      for (vtkIdType c = 0; c < columns; ++c)
-      {
-        out << (c ? "," : "")
-            << vtkDoubleArray::SafeDownCast(table->GetColumn(c))->GetValue(r);
-      }
-      out << "\n";
-    }
-    out.flush();
-    if (!out)
-    {
-      throw std::runtime_error("History File: writing '" + temporary + "' failed.");
-    }
+    out << "\n";
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  const std::string text = out.str();
+  try
   {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("History File: cannot rename '" + temporary + "' to '" + path + "'.");
+    dem::writeFileAtomically(path, text.data(), text.size());
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(std::string("History File: ") + e.what());
   }
 }
 }
@@ -253,6 +245,7 @@ struct vtkDEMLoadTest::vtkInternals
   std::string SavedPath;
   std::uint64_t Run = 0;   ///< fingerprint of this run (input and settings), for checkpoints
   std::string Stopped;     ///< why the run was stopped (Ctrl-C, abort); empty: it runs
+  std::string CheckpointError; ///< why the last checkpoint failed ("" when it succeeded)
 };
 
 void vtkDEMLoadTest::SetCheckpointFile(const char* path)
@@ -306,11 +299,7 @@ void vtkDEMLoadTest::WriteCheckpoint()
   }
   try
   {
-    dem::writeState(in.Model, this->CheckpointFile);
-    if (!in.Model.test.history.empty())
-    {
-      dem::writeHistoryCSV(in.Model.test, dem::historyPathFor(this->CheckpointFile));
-    }
+    dem::writeStateAndHistory(in.Model, this->CheckpointFile);
     rockdem::CheckpointRecord record;
     record.run = in.Run;
     record.stepsPerFrame = in.StepsPerFrame;
@@ -319,11 +308,19 @@ void vtkDEMLoadTest::WriteCheckpoint()
     rockdem::WriteCheckpointRecord(this->CheckpointFile, record);
     in.SavedFrame = in.Frame;
     in.SavedPath = this->CheckpointFile;
+    in.CheckpointError.clear();
   }
   catch (const std::exception& e)
   {
-    // The run goes on; the user learns that the checkpoint is missing.
-    vtkErrorMacro(<< "Checkpoint File: " << e.what());
+    // The run goes on; the user learns that the checkpoint is missing: in Status and Last
+    // Message, and in Output Messages once per distinct failure (not every frame).
+    const std::string error = std::string("Checkpoint File: ") + e.what();
+    if (error != in.CheckpointError)
+    {
+      vtkErrorMacro(<< error << " The run goes on without this checkpoint.");
+    }
+    in.CheckpointError = error;
+    this->LastMessageText = error + " (frame " + std::to_string(in.Frame) + " is not saved)";
   }
 }
 
@@ -525,7 +522,14 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   in.Simulation.reset();
   in.SavedFrame = -1;
   in.FinishFrame = -1;
+  in.CheckpointError.clear();
+  this->LastMessageText.clear();
   in.Model = rockdem::MultiBlockToModel(input);
+  if (in.Model.particles.empty())
+  {
+    this->LastMessageText = "The input model has no particles: there is nothing to run.";
+    vtkWarningMacro(<< this->LastMessageText);
+  }
   dem::SolverSettings& s = in.Model.solver;
   s.contactLaw = static_cast<dem::ContactLaw>(this->ContactLaw);
   s.timestepSafety = this->TimestepSafety;
@@ -558,7 +562,14 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   }
   else
   {
-    dem::startLoadTest(in.Model, press);
+    const std::string removed = dem::startLoadTest(in.Model, press).summary(
+      "whose centres lay beyond the walls of this stage (grains that escaped while those walls "
+      "were down, in an unconfined test)");
+    if (!removed.empty())
+    {
+      vtkWarningMacro(<< removed);
+      this->LastMessageText = removed;
+    }
   }
   in.Simulation.reset(new dem::Simulation(in.Model));
   in.Timestep = in.Simulation->timestep();
@@ -670,6 +681,7 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   if (!in.Simulation->timestepMessage().empty())
   {
     vtkWarningMacro(<< in.Simulation->timestepMessage());
+    this->LastMessageText = in.Simulation->timestepMessage();
   }
   if (!in.GravityNote.empty())
   {
@@ -975,6 +987,7 @@ int vtkDEMLoadTest::RequestData(
     in.Simulation.reset();
     vtkErrorMacro(<< e.what());
     this->StatusText = e.what();
+    this->LastMessageText = e.what();
     this->StageText = "idle";
     this->Finished = 0;
     this->EstimatedSteps = 0.0;
@@ -1049,6 +1062,7 @@ int vtkDEMLoadTest::RequestData(
       catch (const std::exception& e)
       {
         vtkWarningMacro(<< e.what());
+        this->LastMessageText = e.what();
       }
     }
   }
@@ -1072,6 +1086,10 @@ int vtkDEMLoadTest::RequestData(
          << ", unbalanced force ratio " << dem::formatValue(d.unbalancedForceRatio)
          << ", porosity " << dem::formatValue(this->CurrentPorosity) << ", "
          << in.Simulation->path();
+    if (!in.CheckpointError.empty())
+    {
+      line << "; FAILED " << in.CheckpointError;
+    }
     this->StatusText = line.str();
     vtkOutputWindowDisplayText(("DEM Load Test: " + line.str() + "\n").c_str());
     if (!stopped.empty() && stopped == in.Stopped && frameAsked > in.Frame)

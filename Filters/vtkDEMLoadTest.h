@@ -224,6 +224,9 @@ public:
   vtkGetMacro(CurrentFrame, int);
   const char* GetStatus() const { return this->StatusText.c_str(); } ///< last status line (or error)
   const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial"
+  /// The last warning or report (a failed checkpoint or History File, removed escaped
+  /// grains, an overridden timestep); empty when none.
+  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
 
   ///@{
@@ -319,6 +322,7 @@ protected:
   // Read-only values are results, not parameters: setting them must not call Modified().
   std::string StatusText;
   std::string SolverPathText;
+  std::string LastMessageText;
   vtkIdType NumberOfBonds = 0;
   vtkIdType NumberOfBrokenBonds = 0;
   double Damage = 0.0;

@@ -742,6 +742,13 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
   {
     Missing("the model (no input data)");
   }
+  if (input->GetNumberOfBlocks() == 0 && input->GetFieldData()->GetNumberOfArrays() == 0)
+  {
+    // What a RockDEM stage outputs after an error (or a source with nothing to build).
+    throw dem::InputError("Input is not a RockDEM model: it is empty (no 'Particles' block), so "
+                          "the stage before this one produced no model (see its message in Output "
+                          "Messages or its Last Message).");
+  }
   vtkPolyData* particles = NamedBlock(input, ParticlesBlockName);
   if (!particles)
   {

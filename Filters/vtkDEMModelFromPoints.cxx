@@ -2,6 +2,7 @@
 
 #include "dem/Errors.h"
 #include "dem/Model.h"
+#include "dem/Overlaps.h"
 
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
@@ -53,6 +54,7 @@ int vtkDEMModelFromPoints::FillInputPortInformation(int, vtkInformation* info)
 int vtkDEMModelFromPoints::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  this->LastMessageText.clear();
   try
   {
     vtkPointSet* input = vtkPointSet::GetData(inputVector[0], 0);
@@ -62,6 +64,12 @@ int vtkDEMModelFromPoints::RequestData(
                             "vtkUnstructuredGrid with points and a Radius array).");
     }
     const vtkIdType n = input->GetNumberOfPoints();
+    if (n == 0)
+    {
+      throw dem::InputError("DEM Model From Points: the input has no points, so there is no "
+                            "particle to build a model from (connect a point set with at least "
+                            "one point and a Radius array).");
+    }
     vtkPointData* pd = input->GetPointData();
     vtkDataArray* radius = pd->GetArray("Radius");
     if (!radius || radius->GetNumberOfComponents() != 1)
@@ -101,7 +109,7 @@ int vtkDEMModelFromPoints::RequestData(
 
     double origin[3] = { this->OriginX, this->OriginY, this->OriginZ };
     double size[3] = { this->XDimension, this->YDimension, this->ZDimension };
-    if (this->FitToInput && n > 0)
+    if (this->FitToInput)
     {
       for (int k = 0; k < 3; ++k)
       {
@@ -115,6 +123,7 @@ int vtkDEMModelFromPoints::RequestData(
         size[2] = this->ZDimension;
         origin[2] = mid - 0.5 * size[2];
       }
+      this->WarnIfFitReplacesBox(origin, size);
     }
 
     dem::Model model;
@@ -178,10 +187,22 @@ int vtkDEMModelFromPoints::RequestData(
     }
     model.nextId = static_cast<std::int64_t>(n);
     dem::updateMassProperties(model);
+    // Particle ids are the input point indices: the engine's messages name the points.
+    dem::requireDistinctCentres(d, model.particles);
     if (movedToMidPlane > 0)
     {
       this->ReportInfo("2D Section (XY): " + std::to_string(movedToMidPlane) +
         " points were placed on the mid-plane z = " + dem::formatValue(d.midPlaneZ()) + " m.");
+    }
+    const dem::OverlapReport overlaps = dem::measureOverlaps(model);
+    if (overlaps.pairs > 0)
+    {
+      this->ReportWarning(std::to_string(overlaps.pairs) + " pair(s) of input spheres overlap; the " +
+        "largest overlap is " + dem::formatValue(overlaps.largest) + " m (" +
+        dem::formatValue(100.0 * overlaps.largestRelative) + " % of the smaller radius), between " +
+        "points " + std::to_string(overlaps.idA) + " and " + std::to_string(overlaps.idB) +
+        ". Overlapping particles push apart hard when the model runs; Current Porosity counts the " +
+        "volume two particles share once.");
     }
     this->PublishModel(model, outputVector);
     return 1;

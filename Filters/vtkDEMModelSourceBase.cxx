@@ -109,6 +109,7 @@ void vtkDEMModelSourceBase::ResolveBox(
         "; keeping " + axisName[k] + " Dimension = " + dem::formatValue(size[k]) + " m.");
     }
   }
+  this->WarnIfFitReplacesBox(origin, size);
 }
 
 void vtkDEMModelSourceBase::ConfigureModel(
@@ -167,6 +168,33 @@ void vtkDEMModelSourceBase::ReportFailure(const char* what, vtkInformationVector
   this->NumberOfElements = 0;
   this->CurrentPorosity = 1.0;
   this->ContactStiffness = 0.0;
+}
+
+void vtkDEMModelSourceBase::ReportWarning(const std::string& line)
+{
+  this->LastMessageText = line;
+  vtkWarningMacro(<< line);
+}
+
+void vtkDEMModelSourceBase::WarnIfFitReplacesBox(const double origin[3], const double size[3])
+{
+  // The box properties at their defaults (0 and 0.1 m) were not set. In a 2D section the
+  // Z Dimension is the slab thickness, which fitting keeps.
+  const double set[6] = { this->OriginX, this->OriginY, this->OriginZ, this->XDimension,
+    this->YDimension, this->Section2D ? 0.1 : this->ZDimension };
+  const double defaults[6] = { 0.0, 0.0, 0.0, 0.1, 0.1, 0.1 };
+  if (!this->FitToInput || std::equal(set, set + 6, defaults))
+  {
+    return;
+  }
+  auto triple = [](const double v[3]) {
+    return "(" + dem::formatValue(v[0]) + ", " + dem::formatValue(v[1]) + ", " + dem::formatValue(v[2]) + ") m";
+  };
+  const double userOrigin[3] = { this->OriginX, this->OriginY, this->OriginZ };
+  const double userSize[3] = { this->XDimension, this->YDimension, this->ZDimension };
+  this->ReportWarning("Fit To Input is on: the box you set (Origin " + triple(userOrigin) +
+    ", Dimensions " + triple(userSize) + ") is replaced by the box fitted to the input (origin " +
+    triple(origin) + ", size " + triple(size) + "). Turn Fit To Input off to use your box.");
 }
 
 void vtkDEMModelSourceBase::ReportInfo(const std::string& line)

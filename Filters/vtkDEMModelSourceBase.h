@@ -139,6 +139,13 @@ protected:
   /// Reports an informational line (ParaView's Output Messages) and keeps it as LastMessage.
   void ReportInfo(const std::string& line);
 
+  /// A warning: Output Messages (vtkWarningMacro) and Last Message.
+  void ReportWarning(const std::string& line);
+
+  /// With Fit To Input on, warns when the Origin or Dimensions differ from their defaults
+  /// (the user set a box) that the fitted box (origin, size in m) replaces them.
+  void WarnIfFitReplacesBox(const double origin[3], const double size[3]);
+
   double OriginX, OriginY, OriginZ;
   double XDimension, YDimension, ZDimension;
   vtkTypeBool PeriodicX, PeriodicY, PeriodicZ;

@@ -31,8 +31,8 @@ public:
 
   ///@{
   /// Number of particles placed when the pack is built or reset.
-  vtkSetMacro(InitialElements, int);
-  vtkGetMacro(InitialElements, int);
+  vtkSetMacro(InitialElements, vtkIdType);
+  vtkGetMacro(InitialElements, vtkIdType);
   ///@}
 
   ///@{
@@ -96,7 +96,7 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int InitialElements;
+  vtkIdType InitialElements; ///< 64-bit: a count beyond 2^31 reaches the engine's memory check
   double MinimumSize;
   double MaximumSize;
   double TargetPorosity;

@@ -11,9 +11,14 @@
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <string>
+
+#include <sys/stat.h>
 
 vtkStandardNewMacro(vtkDEMStateReader);
 
@@ -33,6 +38,22 @@ int vtkDEMStateReader::CanReadFile(const char* fileName)
   {
     return 0;
   }
+  struct stat info
+  {
+  };
+  if (::stat(fileName, &info) != 0 || !S_ISREG(info.st_mode))
+  {
+    return 0;
+  }
+  // A .rdem file is ours to explain, whatever is wrong with it.
+  const std::string name = fileName;
+  const std::string extension = dem::StateFileExtension;
+  if (name.size() >= extension.size() &&
+    std::equal(extension.rbegin(), extension.rend(), name.rbegin(),
+      [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); }))
+  {
+    return 1;
+  }
   std::ifstream in(fileName, std::ios::binary);
   char magic[sizeof(dem::StateMagic)] = {};
   in.read(magic, sizeof(magic));
@@ -43,6 +64,7 @@ int vtkDEMStateReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
+  this->LastMessageText.clear();
   try
   {
     if (!this->FileName || !*this->FileName)
@@ -59,15 +81,46 @@ int vtkDEMStateReader::RequestData(
     this->NumberOfBrokenBonds = static_cast<vtkIdType>(bonds.broken);
     this->StageText = dem::stageName(model.test.stage);
     this->ModeText = dem::modeName(model.test.settings.mode);
+    this->SyncHistory(model);
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
+    this->LastMessageText = e.what();
     output->Initialize();
     this->NumberOfParticles = 0;
     return 0;
   }
   return 1;
+}
+
+void vtkDEMStateReader::SyncHistory(const dem::Model& model)
+{
+  // The state file is the truth: a history CSV beside it that another write left (a crash
+  // between the state file's rename and the CSV's) is made to agree with it.
+  try
+  {
+    const dem::HistorySyncReport sync = dem::syncHistoryCSV(model.test, this->FileName);
+    if (sync.action == dem::HistorySync::Rewritten)
+    {
+      this->LastMessageText = "The history file '" + sync.path + "' was out of step with the state file (" +
+        std::to_string(sync.fileRows) + " rows; the state file has " + std::to_string(sync.stateRows) +
+        "): rewritten from the state file.";
+    }
+    else if (sync.action == dem::HistorySync::Removed)
+    {
+      this->LastMessageText = "The history file '" + sync.path + "' (" + std::to_string(sync.fileRows) +
+        " rows) belonged to another write: the state file has no test history, so it was removed.";
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->LastMessageText = e.what();
+  }
+  if (!this->LastMessageText.empty())
+  {
+    vtkWarningMacro(<< this->LastMessageText);
+  }
 }
 
 void vtkDEMStateReader::PrintSelf(ostream& os, vtkIndent indent)

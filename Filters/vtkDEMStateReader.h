@@ -20,6 +20,11 @@
 
 #include <string> // for the read-only strings
 
+namespace dem
+{
+struct Model;
+}
+
 class ROCKDEMFILTERS_EXPORT vtkDEMStateReader : public vtkMultiBlockDataSetAlgorithm
 {
 public:
@@ -33,8 +38,10 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
-  /// 1 if the file starts with the RockDEM state file magic bytes (the full checks run
-  /// when it is read).
+  /// 1 if the file is a regular file that starts with the RockDEM state file magic bytes
+  /// or whose name ends in .rdem, damaged or not: the full checks run when it is read, and
+  /// their message (truncated, corrupt, not a RockDEM state file, ...) reaches the user
+  /// through File > Open instead of ParaView's "No reader found". 0 for a missing file.
   static int CanReadFile(const char* fileName);
 
   ///@{
@@ -46,6 +53,9 @@ public:
   vtkGetMacro(NumberOfBrokenBonds, vtkIdType);
   const char* GetStage() const { return this->StageText.c_str(); } ///< "idle", "shear", ...
   const char* GetTestMode() const { return this->ModeText.c_str(); } ///< "Off", "Triaxial", ...
+  /// The error of the last read, or a note on the history CSV beside the file (rewritten
+  /// because it was out of step with the state file); empty when none.
+  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
 
 protected:
@@ -53,6 +63,9 @@ protected:
   ~vtkDEMStateReader() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Makes the history CSV beside the file agree with the model read (dem::syncHistoryCSV)
+  /// and says so in Last Message and Output Messages when it had to.
+  void SyncHistory(const dem::Model& model);
 
   char* FileName = nullptr;
   double ModelTime = 0.0;
@@ -62,6 +75,7 @@ protected:
   vtkIdType NumberOfBrokenBonds = 0;
   std::string StageText = "idle";
   std::string ModeText = "Off";
+  std::string LastMessageText;
 
 private:
   vtkDEMStateReader(const vtkDEMStateReader&) = delete;

@@ -37,10 +37,13 @@ void vtkDEMStateWriter::WriteData()
     }
     const dem::Model model =
       rockdem::MultiBlockToModel(vtkMultiBlockDataSet::SafeDownCast(this->GetInput()));
-    dem::writeState(model, this->FileName);
-    if (this->WriteHistory && !model.test.history.empty())
+    if (this->WriteHistory)
     {
-      dem::writeHistoryCSV(model.test, dem::historyPathFor(this->FileName));
+      dem::writeStateAndHistory(model, this->FileName); // one pair: see dem/StateFile.h
+    }
+    else
+    {
+      dem::writeState(model, this->FileName);
     }
     this->LastWriteSucceeded = 1;
   }

@@ -1,5 +1,6 @@
 #include "dem/LoadTest.h"
 
+#include "dem/Bonds.h"
 #include "dem/Errors.h"
 #include "dem/Model.h"
 #include "dem/Simulation.h"
@@ -101,9 +102,58 @@ double centreSpread(const Particles& particles, int axis)
   return deviation / static_cast<double>(n);
 }
 
-void startLoadTest(Model& model, const LoadTestSettings& settings)
+void validatePlatenSpeed(const Model& model, double timestep)
+{
+  const LoadTestSettings& s = model.test.settings;
+  const Particles& p = model.particles;
+  if ((s.mode != TestMode::Compression && s.mode != TestMode::Tension && s.mode != TestMode::Triaxial) ||
+      p.empty() || !(timestep > 0.0) || s.axis < 0 || s.axis > 2 ||
+      model.solver.allowUnsafeTimestep) { // test-only: show what an unsafe run does
+    return;
+  }
+  // The starting length along the axis (set by startLoadTest; the box until then).
+  const double length = model.test.initialLength[static_cast<std::size_t>(s.axis)] > 0.0
+    ? model.test.initialLength[static_cast<std::size_t>(s.axis)]
+    : model.domain.size[s.axis];                                             // m
+  const double rmin = *std::min_element(p.radius.begin(), p.radius.end()); // m
+  const double travel = s.strainRate * length * timestep;                   // m per step
+  const double allowed = MaxPlatenTravelPerStep * rmin;                     // m per step
+  if (travel > allowed) {
+    throw InputError("Strain Rate = " + formatValue(s.strainRate) +
+      " 1/s is too fast for this model: the platen would move " + formatValue(travel) +
+      " m per step (Strain Rate x starting length " + formatValue(length) + " m x timestep " +
+      formatValue(timestep) + " s), more than " + formatValue(100.0 * MaxPlatenTravelPerStep) +
+      " % of the smallest radius (" + formatValue(rmin) + " m), and the run would blow up. Valid range is (0, " +
+      formatValue(allowed / (length * timestep)) + "] 1/s for this model and timestep.");
+  }
+}
+
+namespace {
+/// Removes the grains beyond the walls the new stage stands up (grains that escaped while
+/// those walls were down, in an unconfined test): a grain beyond an active wall could never
+/// come back, and the run would stop at once on it (Documentation/Press.md, "Escaped grains").
+RemovedParticles removeEscapedGrains(Model& model)
+{
+  std::vector<std::uint8_t> escaped(model.particles.size(), 0);
+  for (std::size_t i = 0; i < escaped.size(); ++i) {
+    escaped[i] = beyondActiveWalls(model.walls, model.particles.position[i]) ? 1 : 0;
+  }
+  return removeParticles(model, escaped);
+}
+} // namespace
+
+RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
 {
   validate(settings);
+  if (settings.mode == TestMode::Tension && !model.particles.empty()) {
+    const BondCounts bonds = countBonds(model.bonds);
+    if (bonds.installed == bonds.broken) {
+      throw InputError(std::string("Mode = Tension needs a cemented model, but this one has ") +
+        (bonds.installed == 0 ? "no bonds" : "no intact bonds (all " + std::to_string(bonds.installed) +
+         " are broken)") + ": nothing holds the specimen together, so the pull would be zero. Cement it "
+        "first (DEM Cement), or use Mode = Compression, Triaxial or Isotropic.");
+    }
+  }
   LoadTestState& t = model.test;
   Particles& p = model.particles;
   // End any previous test: detach particles, restore the box.
@@ -120,7 +170,7 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
     // Off restores the box; a model that never ran gets its walls here.
     resetWalls(model);
     if (settings.mode == TestMode::Off) {
-      return;
+      return removeEscapedGrains(model);
     }
   }
   // Otherwise the walls stay where the previous stage left them (a consolidated
@@ -164,6 +214,7 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
     model.walls[2 * a].position = lo;
     model.walls[2 * a + 1].position = hi;
   }
+  const RemovedParticles removed = removeEscapedGrains(model);
   for (int k = 0; k < 3; ++k) {
     const Wall& low = model.walls[2 * k];
     const Wall& high = model.walls[2 * k + 1];
@@ -210,6 +261,7 @@ void startLoadTest(Model& model, const LoadTestSettings& settings)
   if (settings.mode == TestMode::Compression) {
     model.walls[2 * a + 1].velocity = -settings.strainRate * t.initialLength[a];
   }
+  return removed;
 }
 
 } // namespace dem

@@ -3,6 +3,7 @@
 
 #include "dem/Errors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -65,6 +66,111 @@ void Particles::append(const Vec3& x, double r, std::int64_t globalId, std::uint
   inertia.push_back(0.0);
   id.push_back(globalId);
   flags.push_back(flagBits);
+}
+
+// ---------------------------------------------------------------------------------------
+// Removing particles
+
+namespace {
+/// Keeps the elements whose flag in `keep` is set (same length), in order.
+template <class T>
+void keepOnly(std::vector<T>& values, const std::vector<std::uint8_t>& keep)
+{
+  if (values.empty()) {
+    return; // an optional array (rolling springs without rolling friction)
+  }
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (keep[i]) {
+      values[out++] = values[i];
+    }
+  }
+  values.resize(out);
+}
+} // namespace
+
+std::string RemovedParticles::summary(const std::string& why) const
+{
+  if (particles == 0) {
+    return "";
+  }
+  return "Removed " + std::to_string(particles) + " particle(s) " + why + ", with " + std::to_string(bonds) +
+    " bond(s) (" + std::to_string(intactBonds) + " intact) and " + std::to_string(contacts) +
+    " contact(s) of theirs.";
+}
+
+RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& remove)
+{
+  // Every per-particle, per-contact and per-bond array is filtered below: a new one must be
+  // added there (these fail to compile when a struct gains an array).
+  static_assert(sizeof(Particles) == 11 * sizeof(std::vector<double>), "filter the new particle array below");
+  static_assert(sizeof(ContactHistory) == 4 * sizeof(std::vector<double>), "filter the new contact array below");
+  static_assert(sizeof(Bonds) == 16 * sizeof(std::vector<double>), "filter the new bond array below");
+  RemovedParticles removed;
+  Particles& p = model.particles;
+  std::vector<std::int64_t> gone; // ids, sorted
+  std::vector<std::uint8_t> keep(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    keep[i] = remove[i] ? 0 : 1;
+    if (remove[i]) {
+      gone.push_back(p.id[i]);
+    }
+  }
+  if (gone.empty()) {
+    return removed;
+  }
+  std::sort(gone.begin(), gone.end());
+  auto isGone = [&](std::int64_t id) { return std::binary_search(gone.begin(), gone.end(), id); };
+  removed.particles = gone.size();
+  keepOnly(p.position, keep);
+  keepOnly(p.velocity, keep);
+  keepOnly(p.angularVelocity, keep);
+  keepOnly(p.displacement, keep);
+  keepOnly(p.force, keep);
+  keepOnly(p.torque, keep);
+  keepOnly(p.radius, keep);
+  keepOnly(p.mass, keep);
+  keepOnly(p.inertia, keep);
+  keepOnly(p.id, keep);
+  keepOnly(p.flags, keep);
+
+  ContactHistory& c = model.contacts;
+  std::vector<std::uint8_t> keepContact(c.size());
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    keepContact[k] = isGone(c.idA[k]) || (c.idB[k] >= 0 && isGone(c.idB[k])) ? 0 : 1;
+    removed.contacts += keepContact[k] ? 0 : 1;
+  }
+  keepOnly(c.idA, keepContact);
+  keepOnly(c.idB, keepContact);
+  keepOnly(c.shearSpring, keepContact);
+  keepOnly(c.rollingSpring, keepContact);
+
+  Bonds& b = model.bonds;
+  std::vector<std::uint8_t> keepBond(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    keepBond[k] = isGone(b.idA[k]) || isGone(b.idB[k]) ? 0 : 1;
+    if (!keepBond[k]) {
+      ++removed.bonds;
+      removed.intactBonds += b.broken(k) ? 0 : 1;
+    }
+  }
+  keepOnly(b.idA, keepBond);
+  keepOnly(b.idB, keepBond);
+  keepOnly(b.radius, keepBond);
+  keepOnly(b.normalStiffness, keepBond);
+  keepOnly(b.shearStiffness, keepBond);
+  keepOnly(b.tensileStrength, keepBond);
+  keepOnly(b.cohesion, keepBond);
+  keepOnly(b.frictionAngle, keepBond);
+  keepOnly(b.normalForce, keepBond);
+  keepOnly(b.shearForce, keepBond);
+  keepOnly(b.twistingMoment, keepBond);
+  keepOnly(b.bendingMoment, keepBond);
+  keepOnly(b.failure, keepBond);
+  keepOnly(b.failureTime, keepBond);
+  keepOnly(b.failurePosition, keepBond);
+  keepOnly(b.failureNormal, keepBond);
+  return removed;
 }
 
 // ---------------------------------------------------------------------------------------

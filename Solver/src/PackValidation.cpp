@@ -44,15 +44,16 @@ void validateFineZone(const FineZone& zone, const Domain& domain)
                        " m reaches past the model box: valid range is (0, " + formatValue(room) +
                        "] m for " + originLabel + " = " + formatValue(zone.origin[a]) + " m.");
     }
-    // Between walls, a fine particle's centre keeps Fine Zone Minimum Size from each face:
-    // the zone must reach into that band, or no fine particle could ever be placed.
+    // Between walls, a fine particle's centre keeps its radius from each face: the zone
+    // must reach into that band for the largest fine radius, or fine particles of that
+    // size could never be placed.
     if (!domain.periodic[a]) {
-      const double r = zone.minimumSize;
+      const double r = zone.maximumSize;
       if (std::min(zone.origin[a] + zone.size[a], upper - r) < std::max(zone.origin[a], lower + r)) {
         throw InputError(originLabel + " = " + formatValue(zone.origin[a]) + " m and " + sizeLabel +
                          " = " + formatValue(zone.size[a]) +
                          " m leave no room for a fine particle: its centre must lie at least "
-                         "Fine Zone Minimum Size = " + formatValue(r) +
+                         "Fine Zone Maximum Size = " + formatValue(r) +
                          " m from the box faces, between " + formatValue(lower + r) + " and " +
                          formatValue(upper - r) + " m.");
       }
@@ -102,11 +103,13 @@ void validate(const PackParameters& params, const Domain& domain)
   for (int a = 0; a < domain.dimension(); ++a) {
     const std::string label = std::string(kAxisName[a]) + " Dimension";
     const double length = domain.size[a];
-    if (!domain.periodic[a] && length < 2.0 * params.minimumSize) {
+    // Radii are drawn up to Maximum Size and a drawn radius is kept until it is placed: a
+    // box that only the smaller radii fit in would place none of the larger ones.
+    if (!domain.periodic[a] && length < 2.0 * params.maximumSize) {
       throw InputError(label + " = " + formatValue(length) +
-                       " m cannot hold one particle of Minimum Size " +
-                       formatValue(params.minimumSize) + " m: it must be at least " +
-                       formatValue(2.0 * params.minimumSize) + " m.");
+                       " m cannot hold a particle of Maximum Size " +
+                       formatValue(params.maximumSize) + " m: valid range is at least 2 x Maximum Size = " +
+                       formatValue(2.0 * params.maximumSize) + " m.");
     }
     if (domain.periodic[a] && length < 4.0 * largest) {
       // r_i + r_j <= L/2 keeps the minimum image the one true neighbour across the seam.

@@ -1,6 +1,7 @@
 // RockDEM engine: Current Porosity (see dem/Porosity.h). SI units.
 #include "dem/Porosity.h"
 
+#include "dem/Overlaps.h"
 #include "dem/Pack.h"
 
 #include <algorithm>
@@ -77,7 +78,21 @@ double PorosityMeter::porosity() const
 
 double currentPorosity(const Model& model)
 {
-  return PorosityMeter(model).porosity();
+  // Overlapping particles share volume: each overlapping pair's lens is counted once
+  // (measureOverlaps), not twice. A pack that never overlaps (DEM Pack Source) gives exactly
+  // PorosityMeter's value. Where three or more particles overlap at one point, or particles
+  // reach outside the box, the solid volume can still exceed the occupied volume: the
+  // porosity is then 0, never negative (DEM Model From Points warns about the overlaps).
+  const PorosityMeter meter(model);
+  const double occupied = meter.occupiedVolume();
+  if (!(occupied > 0.0)) {
+    return 1.0;
+  }
+  const double shared = measureOverlaps(model).volume;
+  if (shared == 0.0) {
+    return std::max(0.0, meter.porosity());
+  }
+  return std::max(0.0, 1.0 - (meter.solidVolume() - shared) / occupied);
 }
 
 } // namespace dem

@@ -564,8 +564,13 @@ TEST(PackValidation, BoxThatCannotHoldOneParticle)
   dem::Domain d;
   d.size.x() = 0.001;
   expectError(packOf(10, 0.002, 0.003), d,
-              { "X Dimension = 0.001 m cannot hold one particle of Minimum Size 0.002 m",
-                "at least 0.004 m" });
+              { "X Dimension = 0.001 m cannot hold a particle of Maximum Size 0.003 m",
+                "at least 2 x Maximum Size = 0.006 m" });
+  // Issue 18 item 9: a box between 2 x Minimum Size and 2 x Maximum Size used to pass the
+  // check and then place no particle at all (the large radii drawn never fit).
+  d.size.x() = 0.005;
+  expectError(packOf(10, 0.002, 0.003), d,
+              { "X Dimension = 0.005 m cannot hold a particle of Maximum Size 0.003 m", "0.006 m" });
   // The slab of a 2D section is not a placement axis: a thin slab is fine.
   d = dem::Domain{};
   d.section2D = true;

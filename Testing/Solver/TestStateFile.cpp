@@ -4,6 +4,7 @@
 // triaxial mid-shear); truncated, damaged, unknown-version and inconsistent files are
 // rejected with a message naming the file and the problem; writes are atomic.
 #include "StateFixtures.h"
+#include "TempDir.h"
 
 #include "dem/Errors.h"
 #include "dem/StateFile.h"
@@ -21,43 +22,9 @@
 using namespace dem;
 using dem::statetest::firstDifference;
 using dem::statetest::sameBits;
+using dem::testing::TempDir;
 
 namespace {
-
-/// A fresh directory for the files of one test.
-class TempDir {
-public:
-  TempDir()
-  {
-    char pattern[] = "/tmp/rockdem-statefile-XXXXXX";
-    path_ = ::mkdtemp(pattern);
-  }
-  ~TempDir()
-  {
-    for (const std::string& f : files()) {
-      std::remove((path_ + "/" + f).c_str());
-    }
-    ::rmdir(path_.c_str());
-  }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-  std::vector<std::string> files() const
-  {
-    std::vector<std::string> names;
-    if (DIR* d = ::opendir(path_.c_str())) {
-      while (dirent* e = ::readdir(d)) {
-        const std::string n = e->d_name;
-        if (n != "." && n != "..") {
-          names.push_back(n);
-        }
-      }
-      ::closedir(d);
-    }
-    return names;
-  }
-
-private:
-  std::string path_;
-};
 
 std::vector<unsigned char> readBytes(const std::string& path)
 {
@@ -362,7 +329,7 @@ TEST(StateFile, DamagedBytesAreRejected)
     const char* expected;
   };
   for (const Case& c : { Case{ 0, "not a RockDEM state file" }, Case{ 5, "not a RockDEM state file" },
-                         Case{ 16, "format version" }, Case{ 20, "header size" }, Case{ 24, "bytes" },
+                         Case{ 16, "corrupt" }, Case{ 20, "header size" }, Case{ 24, "bytes" },
                          Case{ 32, "corrupt" }, Case{ 100, "corrupt" }, Case{ 512, "corrupt" },
                          Case{ 520, "corrupt" }, Case{ image.size() / 3, "corrupt" },
                          Case{ image.size() / 2, "corrupt" }, Case{ image.size() - 1, "corrupt" } }) {

@@ -8,6 +8,7 @@
 // strains are shortening positive. SI units: Pa, s, 1/s.
 #pragma once
 
+#include "dem/RemovedParticles.h"
 #include "dem/SolverState.h"
 
 #include <array>
@@ -88,11 +89,26 @@ double centreSpread(const Particles& particles, int axis);
 /// Throws InputError naming the parameter for an invalid setting (for the given mode).
 void validate(const LoadTestSettings& settings);
 
+/// The farthest a platen may move in one timestep, as a fraction of the smallest radius.
+/// A platen that moves farther drives grains into one another faster than the contacts can
+/// push back within a step, and the run blows up (Documentation/Press.md, "How fast").
+constexpr double MaxPlatenTravelPerStep = 0.01;
+
+/// Throws InputError naming Strain Rate when the platen of the model's test (Compression,
+/// Tension, Triaxial) would travel more than MaxPlatenTravelPerStep x the smallest radius in
+/// one step of `timestep` (s): Strain Rate x starting length x timestep. The message gives
+/// the largest Strain Rate this model and timestep can follow.
+void validatePlatenSpeed(const Model& model, double timestep);
+
 /// Starts a test on the model: records the specimen size, sets up the walls for the
 /// mode (Compression and Tension remove the side walls; Tension attaches the particles
 /// next to each platen to it) and the first stage. Mode Off restores the six walls at
-/// the current box and ends any test.
-void startLoadTest(Model& model, const LoadTestSettings& settings);
+/// the current box and ends any test. Once the new stage's walls are in place, removes
+/// the particles whose centres lie beyond them (beyondActiveWalls: grains that escaped
+/// while those walls were down, in an unconfined test) with their bonds and contacts, and
+/// returns what it removed (Documentation/Press.md, "Escaped grains"). Throws
+/// InputError for invalid settings and for Mode Tension on a model without intact bonds.
+RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings);
 
 /// Whether a stage asked to run `settings` on a model whose test state is `test` continues
 /// that test instead of starting a new one (startLoadTest): the test is in progress

@@ -12,6 +12,7 @@
 #include "dem/Bonds.h"
 #include "dem/LoadTest.h"
 #include "dem/Random.h"
+#include "dem/RemovedParticles.h"
 #include "dem/SolverState.h"
 
 #include <Eigen/Core>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace dem {
@@ -130,6 +132,10 @@ inline Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b)
   }
   return s;
 }
+
+/// Removes the particles with remove[slot] != 0 (remove has one entry per particle), with
+/// their contact history and every bond that joins them; the others keep their order.
+RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& remove);
 
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);

@@ -120,7 +120,8 @@ PackReport addElements(Model& model, const PackParameters& params);
 /// (or wall on a non-periodic axis). Never creates overlap.
 GrowReport growElements(Model& model);
 
-/// Current Porosity: 1 - (solid volume) / (occupied volume). The occupied volume is the
+/// Current Porosity: 1 - (solid volume) / (occupied volume), never below 0. The solid
+/// volume counts the volume two overlapping particles share once (dem/Overlaps.h). The occupied volume is the
 /// box, except along the "up" axis (opposite to gravity) when that axis has walls: there
 /// it extends only up to the top of the highest particle (a settled pack is measured to
 /// its top, not to the box ceiling). 2D: areas of discs over the section area.

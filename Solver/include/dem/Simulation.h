@@ -1,16 +1,20 @@
-// RockDEM engine: the time-stepping solver on the CPU.
+// RockDEM engine: the time-stepping solver (the driver, DESIGN.md "Driver and backends").
 //
-// One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> Verlet
-// neighbour list update when any particle has moved half the skin (the list of particles
-// near each wall with it, or alone when a wall has moved half the skin) -> pair forces
-// (each pair once) -> bond forces -> per-particle gather in a fixed order (pairs by
+// The driver chooses the timestep, runs the load-test state machine (wall control each
+// step, a history row every Sample Interval steps), checks stability and reports
+// diagnostics; a backend (dem/Backend.h) owns the particle arrays while it steps them.
+// One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> wall control
+// -> Verlet neighbour list update when any particle has moved half the skin (the list of
+// particles near each wall with it, or alone when a wall has moved half the skin) -> pair
+// forces (each pair once) -> bond forces -> per-particle gather in a fixed order (pairs by
 // partner slot, then its wall contacts, evaluated there, then bonds) -> Cundall local
 // damping -> half kick. Velocity Verlet; velocity-dependent forces use the half-step
-// velocity. Serial below SolverSettings::parallelThreshold particles, OpenMP above; the
-// result never depends on the number of threads (no floating-point atomics, fixed
-// summation order). SI units throughout.
+// velocity. The CPU backend runs serially below SolverSettings::parallelThreshold
+// particles, OpenMP above; the result never depends on the number of threads (no
+// floating-point atomics, fixed summation order). SI units throughout.
 #pragma once
 
+#include "dem/Backend.h"
 #include "dem/ContactLaws.h"
 #include "dem/LoadTest.h"
 #include "dem/Model.h"
@@ -74,7 +78,8 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial" or "CPU OpenMP (N threads)".
+  /// Which path runs: "CPU serial (why: too few particles for threads, Threads = 1)" or
+  /// "CPU OpenMP (N threads)".
   std::string path() const;
   const ContactModel& contactModel() const { return contactModel_; }
 
@@ -91,28 +96,21 @@ public:
   TestMeasurements measurements() const;
 
 private:
-  void rebuildNeighbours(bool importModelHistory);
-  void rebuildWallContacts(bool carryHistory);
-  bool wallsMoved() const;
-  void buildBondLists();
-  void controlWalls();
-  void sampleLoadTest();
-  std::array<double, 3> specimenLengths() const;
-  void computeBondForces(bool incrementState);
-  void computeForces(bool incrementHistory, bool closingKick);
-  double contactForceMagnitude(std::size_t particle) const;
-  void step();
+  std::int64_t stepsToNextSample() const;
+  void sampleLoadTest(std::int64_t steps);
+  double contactForceMagnitude(const ContactState& state, std::size_t particle) const;
   void checkStability(const char* when) const;
   double availableEnergy() const;
 
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
   Model& model_;
+  std::unique_ptr<Backend> backend_;
   ContactModel contactModel_;
   double critical_ = 0.0;
   double timestep_ = 0.0;
   std::string timestepMessage_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
+  double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
+  bool broken_ = false;                 ///< an instability stopped the run
 };
 
 } // namespace dem

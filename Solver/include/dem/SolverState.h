@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +50,19 @@ struct Wall {
     return n;
   }
 };
+
+/// Whether a centre lies beyond an active wall: outside the walls on an axis that has them
+/// (walls stored as X-, X+, Y-, Y+, Z-, Z+; none yet: false). Such a particle has escaped.
+inline bool beyondActiveWalls(const std::vector<Wall>& walls, const Vec3& x)
+{
+  for (std::size_t k = 0; k < 3 && walls.size() == 6; ++k) {
+    const Wall& low = walls[2 * k];
+    if (low.active && (x[static_cast<int>(k)] < low.position || x[static_cast<int>(k)] > walls[2 * k + 1].position)) {
+      return true;
+    }
+  }
+  return false;
+}
 
 /// Identifier of wall w as a contact partner: -(w + 1).
 inline std::int64_t wallPartnerId(int wallIndex) { return -static_cast<std::int64_t>(wallIndex) - 1; }

@@ -85,8 +85,40 @@ std::string historyPathFor(const std::string& statePath);
 /// atomically. Throws FileError.
 void writeHistoryCSV(const LoadTestState& test, const std::string& path);
 
+/// The text writeHistoryCSV writes.
+std::string historyCSVText(const LoadTestState& test);
+
+/// Writes the state file and the test history CSV beside it (historyPathFor) as a pair.
+/// Both are written to temporaries and flushed to disk before either is renamed, the state
+/// file first; a model without history removes the CSV an earlier write left beside it (it
+/// would contradict the state). The state file is the truth: a crash between the two
+/// renames leaves the CSV one write behind, which syncHistoryCSV and the next write repair.
+/// Throws FileError (the state file is then as before unless the message says otherwise).
+void writeStateAndHistory(const Model& model, const std::string& path);
+
+/// What syncHistoryCSV did to the history CSV beside a state file.
+enum class HistorySync {
+  InStep,    ///< absent, or already exactly the state's history: nothing done
+  Rewritten, ///< it differed (rows of another write): rewritten from the state
+  Removed,   ///< the state has no history: the CSV of another write was removed
+};
+struct HistorySyncReport {
+  HistorySync action = HistorySync::InStep;
+  std::string path;          ///< the CSV's path
+  std::size_t fileRows = 0;  ///< data rows the CSV had before (0 when absent)
+  std::size_t stateRows = 0; ///< history rows in the state
+};
+
+/// Makes the history CSV beside `statePath` agree with the state's history (the state file
+/// is the truth): a CSV that differs is rewritten from it (atomically), one beside a state
+/// without history is removed, an absent one is left absent. Throws FileError when the
+/// CSV cannot be read, rewritten or removed.
+HistorySyncReport syncHistoryCSV(const LoadTestState& test, const std::string& statePath);
+
 /// Writes `bytes` to `path` atomically (temporary file beside it, fsync, rename).
 /// Throws FileError; on failure the target is left as it was and no temporary remains.
+/// Temporaries of the same target left by a process that no longer exists (killed while
+/// writing: "<path>.tmp-<pid>-<n>") are removed first.
 void writeFileAtomically(const std::string& path, const void* bytes, std::size_t size);
 
 namespace test_hooks {

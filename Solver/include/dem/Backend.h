@@ -1,0 +1,50 @@
+// RockDEM engine: the seam between the driver (dem::Simulation) and the code that steps
+// the particles (DESIGN.md "Driver and backends").
+//
+// The driver chooses the timestep, runs the load-test state machine and its history rows,
+// checks stability and reports diagnostics; it never touches a contact. A backend owns the
+// particle arrays while it runs and does everything a step does: half kick and drift,
+// wall control (the servo law, dem/WallControl.h), wall motion, neighbour update, contact,
+// bond and wall forces, Cundall damping, the closing half kick and the walls' reaction
+// sums, then advances the clock. Backends: cpu (serial or OpenMP, backends/cpu/) and
+// vulkan (the whole step on a GPU, backends/vulkan/). Every backend gives the same bits.
+// This is also where a distributed (MPI) backend will plug in. SI units.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace dem {
+
+struct ContactState;
+
+/// The quantities the driver's stability check needs (Simulation::checkStability).
+struct StabilityReport {
+  long firstNonFinite = -1;   ///< slot of the first particle with a non-finite position or velocity, or -1
+  std::size_t escaped = 0;    ///< particles outside the walls on an axis with walls
+  long firstEscaped = -1;     ///< slot of the first of them, or -1
+  double kineticEnergy = 0.0; ///< J, translational + rotational
+};
+
+class Backend {
+public:
+  virtual ~Backend() = default;
+
+  /// Which path runs: "CPU serial", "CPU OpenMP (N threads)", "GPU Vulkan: <device>".
+  virtual std::string path() const = 0;
+
+  /// Advances the model by `steps` steps (the clock included). The load test's stage and
+  /// settings stay as they are during the call (they change only at a history row, which
+  /// the driver takes between calls).
+  virtual void run(std::int64_t steps) = 0;
+
+  /// Brings the Model (particles, walls, bonds, clock) and the contact state up to date
+  /// with the last step, and returns the contact state.
+  virtual const ContactState& sync() = 0;
+
+  /// Non-finite values, escaped particles and kinetic energy after the last step.
+  virtual StabilityReport stability() = 0;
+};
+
+} // namespace dem

@@ -1,0 +1,75 @@
+// RockDEM engine: the contact lists of a running model in host memory, in the layout
+// the CPU backend steps on (and the Vulkan backend mirrors when the driver asks).
+//
+// Neighbour pairs sorted by (i, j), their history and last forces; per-particle gather
+// lists; the sparse particle-wall list; the bond lists. The driver's reductions (Love-Weber
+// stress, force balance, elastic energy, exported history) read this structure, so that
+// they are written once and give the same bits whichever backend stepped. SI units.
+#pragma once
+
+#include "dem/ContactLaws.h"
+#include "dem/Model.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace dem {
+
+struct ContactState {
+  // Neighbour list: particle pairs (slots i < j) within reach, sorted by (i, j).
+  std::vector<std::uint32_t> pairI, pairJ;
+  std::vector<ContactConstants> pairConstants; // per pair: stiffness and damping factors
+  std::vector<Vec3> pairSpring;      // m, tangential history
+  std::vector<Vec3> pairRolling;     // N m, rolling history (empty if rolling is off)
+  std::vector<Vec3> pairForce;       // N, force on i (j gets the opposite)
+  std::vector<Vec3> pairTorqueI;     // N m
+  std::vector<Vec3> pairTorqueJ;     // N m
+  std::vector<double> pairNormal;    // N, normal force magnitude (0: adds nothing, the gather skips it)
+  // Per-particle gather lists (CSR): entries of particle i in [start[i], start[i+1]);
+  // an entry is 2 * pair + (1 if the particle is j of the pair).
+  std::vector<std::size_t> adjacencyStart;
+  std::vector<std::size_t> adjacency;
+  // 1: the particle has a touching pair this step (set by the pair loop, cleared by the
+  // gather). A particle without one skips its gather list, whose pair entries lie all
+  // over memory in a large pack.
+  std::vector<std::uint8_t> touching;
+  // Wall contacts, sparse: one entry per particle and active wall whose gap was below the
+  // skin when the list was built (the particles at positionAtBuild, the walls at
+  // wallPositionAtBuild), sorted by (slot, wall). Entries of particle i are
+  // [wallStart[i], wallStart[i+1]). The list is rebuilt with the neighbour list, and
+  // when a wall has moved half the skin or was switched on or off.
+  std::vector<std::uint32_t> wallStart;
+  std::vector<std::uint32_t> wallSlot;     // particle slot of each entry
+  std::vector<std::uint8_t> wallIndex;     // wall (0..5) of each entry
+  std::vector<ContactConstants> wallConstants;
+  std::vector<std::uint8_t> wallTouching;  // 1: overlapping at the last evaluation
+  std::vector<Vec3> wallSpring;      // m
+  std::vector<Vec3> wallRolling;     // N m (empty if rolling is off)
+  std::vector<Vec3> wallForce;       // N, force of the wall on the particle
+  std::vector<double> wallNormal;    // N
+  std::vector<double> wallStiffness; // N/m, normal stiffness of each wall contact (servo gain)
+  std::vector<double> wallElastic;   // N, elastic part of each wall contact's normal force
+  std::array<double, 6> wallPositionAtBuild{};
+  std::array<bool, 6> wallActiveAtBuild{};
+  std::vector<Vec3> undampedForce;   // N, net force before local damping (platen reactions)
+  // Bonds (static list, model.bonds order): slots of A and B, per-bond results, and
+  // per-particle gather lists (entry 2 * bond + 1 if the particle is B).
+  std::vector<std::uint32_t> bondI, bondJ;
+  std::vector<Vec3> bondForce;       // N, force on A
+  std::vector<Vec3> bondTorqueI;     // N m
+  std::vector<Vec3> bondTorqueJ;     // N m
+  std::vector<std::size_t> bondAdjacencyStart;
+  std::vector<std::size_t> bondAdjacency;
+  // Positions at the last neighbour build (for the skin criterion).
+  std::vector<Vec3> positionAtBuild;
+  double skinDistance = 0.0;         // m
+  double smallestRadius = 0.0;       // m
+  std::vector<double> inverseMass;   // 1/kg (0 for fixed particles)
+  std::vector<double> inverseInertia;
+  int threads = 1;       // CPU backend: OpenMP threads when parallel
+  bool parallel = false;
+};
+
+} // namespace dem

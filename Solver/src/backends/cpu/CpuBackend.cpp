@@ -1,0 +1,839 @@
+#include "backends/cpu/CpuBackend.h"
+
+#include "SlotLookup.h"
+#include "dem/Bonds.h"
+#include "dem/Errors.h"
+#include "dem/SizeClassGrids.h"
+#include "dem/WallControl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace dem {
+namespace {
+
+/// Cundall local damping of one degree of freedom (PHYSICS.md s.1):
+/// F - alpha |F| sign(v), with sign(0) = 0. Branch-free: the damping term takes the sign
+/// of v by copysign, and vanishes at v = 0.
+double cundall(double force, double velocity, double alpha)
+{
+  const double damping = std::copysign(alpha * std::abs(force), velocity); // N
+  return force - (velocity != 0.0 ? damping : 0.0);
+}
+
+int availableThreads()
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+/// dem::minimumImage for the hot loops: a box without periodic axes (and not a 2D section)
+/// takes the plain difference, decided once.
+class MinimumImage {
+public:
+  explicit MinimumImage(const Domain& d)
+    : domain_(d)
+    , plain_(!d.periodic[0] && !d.periodic[1] && !d.periodic[2] && !d.section2D)
+  {
+  }
+  Vec3 operator()(const Vec3& a, const Vec3& b) const
+  {
+    return plain_ ? Vec3(b - a) : minimumImage(domain_, a, b);
+  }
+
+private:
+  const Domain& domain_;
+  bool plain_;
+};
+
+Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
+} // namespace
+
+CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double timestep)
+  : model_(model)
+  , contactModel_(contactModel)
+  , timestep_(timestep)
+{
+  const SolverSettings& s = model.solver;
+  ContactState& im = state_;
+  const Particles& p = model.particles;
+  const std::size_t n = p.size();
+  im.inverseMass.resize(n);
+  im.inverseInertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool fixed = (p.flags[i] & (FlagFixed | FlagAttachedLow | FlagAttachedHigh)) != 0;
+    im.inverseMass[i] = fixed ? 0.0 : 1.0 / p.mass[i];
+    im.inverseInertia[i] = fixed ? 0.0 : 1.0 / p.inertia[i];
+  }
+  im.undampedForce.assign(n, Vec3::Zero());
+  im.touching.assign(n, 0);
+  const double rmin = n ? *std::min_element(p.radius.begin(), p.radius.end()) : 0.0;
+  im.skinDistance = s.skin * rmin;
+  im.smallestRadius = rmin;
+  im.threads = s.threads > 0 ? s.threads : availableThreads();
+  im.parallel = static_cast<std::int64_t>(n) >= s.parallelThreshold && im.threads > 1;
+  if (!im.parallel) {
+    im.threads = 1;
+  }
+
+  // Import the stored contact history (by global ids) into the neighbour list.
+  rebuildNeighbours(true);
+  buildBondLists();
+  if (model.clock.step == 0) {
+    // A model that has never stepped has no forces yet: compute them (no history
+    // increment) so that the first half kick sees gravity and the initial contacts.
+    computeForces(false, false);
+  } else {
+    // Resumed: the stored forces, torques, springs and wall reactions are those of the
+    // last step and must stay bit for bit. Evaluate the contacts once for the
+    // diagnostics only, then put the stored state back.
+    const std::vector<Vec3> force = model.particles.force;
+    const std::vector<Vec3> torque = model.particles.torque;
+    const std::vector<Wall> walls = model.walls;
+    const ContactState saved = state_;
+    const Bonds bonds = model.bonds;
+    computeForces(false, false);
+    model.bonds = bonds;
+    model.particles.force = force;
+    model.particles.torque = torque;
+    model.walls = walls;
+    state_.pairSpring = saved.pairSpring;
+    state_.pairRolling = saved.pairRolling;
+    state_.wallSpring = saved.wallSpring;
+    state_.wallRolling = saved.wallRolling;
+  }
+}
+
+
+std::string CpuBackend::path() const
+{
+  if (state_.parallel) {
+    return "CPU OpenMP (" + std::to_string(state_.threads) + " threads)";
+  }
+  // Serial: say why, since Threads may have asked for more.
+  const SolverSettings& s = model_.solver;
+  const auto n = static_cast<std::int64_t>(model_.particles.size());
+  if (n < s.parallelThreshold) {
+    return "CPU serial (" + std::to_string(n) + " particles, below the parallel threshold of " +
+      std::to_string(s.parallelThreshold) + (s.threads == 1 ? ")" : "; threads are used from there on)");
+  }
+  return s.threads == 1 ? std::string("CPU serial (Threads = 1)")
+                        : std::string("CPU serial (OpenMP offers 1 thread)");
+}
+
+void CpuBackend::run(std::int64_t steps)
+{
+  for (std::int64_t s = 0; s < steps; ++s) {
+    step();
+  }
+}
+
+StabilityReport CpuBackend::stability()
+{
+  const Particles& p = model_.particles;
+  StabilityReport r;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.position[i].allFinite() || !p.velocity[i].allFinite() ||
+        !p.angularVelocity[i].allFinite()) {
+      r.firstNonFinite = static_cast<long>(i);
+      return r;
+    }
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (beyondActiveWalls(model_.walls, p.position[i]) && r.escaped++ == 0) {
+      r.firstEscaped = static_cast<long>(i);
+    }
+  }
+  if (r.escaped > 0) {
+    return r;
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    r.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm() +
+      0.5 * p.inertia[i] * p.angularVelocity[i].squaredNorm();
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------
+// Neighbour list
+
+void CpuBackend::rebuildNeighbours(bool importModelHistory)
+{
+  ContactState& im = state_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const std::size_t n = p.size();
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+
+  // Keep the old list's history to carry it over (both lists are sorted by (i, j)).
+  std::vector<std::uint32_t> oldI, oldJ;
+  std::vector<Vec3> oldSpring, oldRolling;
+  oldI.swap(im.pairI);
+  oldJ.swap(im.pairJ);
+  oldSpring.swap(im.pairSpring);
+  oldRolling.swap(im.pairRolling);
+
+  if (n > 0) {
+    const auto [rmin, rmax] = std::minmax_element(p.radius.begin(), p.radius.end());
+    SizeClassGrids grids(d, *rmin, *rmax);
+    grids.insertAll(p);
+    // The queries run in parallel over fixed blocks of slots; each block's pairs are
+    // appended in block order, so the list, sorted by (i, j), does not depend on the
+    // number of threads.
+    const std::size_t blocks = im.parallel ? 8 * static_cast<std::size_t>(im.threads) : 1;
+    std::vector<std::vector<std::uint32_t>> blockI(blocks), blockJ(blocks);
+    const long blockCount = static_cast<long>(blocks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(im.threads) if (im.parallel)
+    for (long b = 0; b < blockCount; ++b) {
+      std::vector<std::size_t> keys;
+      const std::size_t first = n * static_cast<std::size_t>(b) / blocks;
+      const std::size_t last = n * static_cast<std::size_t>(b + 1) / blocks;
+      for (std::size_t i = first; i < last; ++i) {
+        grids.neighboursWithin(p.position[i], p.radius[i], im.skinDistance, i, keys);
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t j : keys) {
+          if (j > i) {
+            blockI[b].push_back(static_cast<std::uint32_t>(i));
+            blockJ[b].push_back(static_cast<std::uint32_t>(j));
+          }
+        }
+      }
+    }
+    for (std::size_t b = 0; b < blocks; ++b) {
+      im.pairI.insert(im.pairI.end(), blockI[b].begin(), blockI[b].end());
+      im.pairJ.insert(im.pairJ.end(), blockJ[b].begin(), blockJ[b].end());
+    }
+  }
+  const std::size_t pairs = im.pairI.size();
+  // The contact law's constants of each pair (they depend on radii and masses only).
+  const double infinite = std::numeric_limits<double>::infinity();
+  auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  im.pairConstants.resize(pairs);
+  const long pairCount = static_cast<long>(pairs);
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairCount; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    im.pairConstants[k] = contactConstants(contactModel_,
+      pairProperties(contactModel_, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab));
+  }
+  im.pairSpring.assign(pairs, Vec3::Zero());
+  im.pairRolling.assign(rolling ? pairs : 0, Vec3::Zero());
+  im.pairForce.assign(pairs, Vec3::Zero());
+  im.pairTorqueI.assign(pairs, Vec3::Zero());
+  im.pairTorqueJ.assign(pairs, Vec3::Zero());
+  im.pairNormal.assign(pairs, 0.0);
+  im.positionAtBuild = p.position;
+  rebuildWallContacts(!importModelHistory);
+
+  if (importModelHistory) {
+    // Stored history is keyed by global ids: map ids to slots, then find each pair.
+    const SlotLookup slots(p);
+    auto findSlot = [&](std::int64_t id) { return slots.find(id); };
+    const ContactHistory& h = model_.contacts;
+    for (std::size_t c = 0; c < h.size(); ++c) {
+      const long a = findSlot(h.idA[c]);
+      if (a < 0) {
+        continue;
+      }
+      if (h.idB[c] < 0) {
+        // A wall contact: its entry, if the particle is near that wall. One that is not
+        // cannot touch before the list is next rebuilt, and its history would be
+        // cleared at the first step anyway.
+        const std::size_t w = static_cast<std::size_t>(-h.idB[c] - 1);
+        for (std::size_t e = im.wallStart[a]; e < im.wallStart[a + 1]; ++e) {
+          if (im.wallIndex[e] == w) {
+            im.wallSpring[e] = h.shearSpring[c];
+            im.wallTouching[e] = 1; // cleared at the next evaluation if it no longer touches
+            if (rolling && c < h.rollingSpring.size()) {
+              im.wallRolling[e] = h.rollingSpring[c];
+            }
+          }
+        }
+        continue;
+      }
+      const long b = findSlot(h.idB[c]);
+      if (b < 0) {
+        continue;
+      }
+      // The stored spring is A's displacement relative to B; the list orders by slot.
+      const std::uint32_t i = static_cast<std::uint32_t>(std::min(a, b));
+      const std::uint32_t j = static_cast<std::uint32_t>(std::max(a, b));
+      const double orientation = (a == static_cast<long>(i)) ? 1.0 : -1.0;
+      std::size_t lo = std::lower_bound(im.pairI.begin(), im.pairI.end(), i) - im.pairI.begin();
+      for (std::size_t k = lo; k < pairs && im.pairI[k] == i; ++k) {
+        if (im.pairJ[k] == j) {
+          im.pairSpring[k] = orientation * h.shearSpring[c];
+          if (rolling && c < h.rollingSpring.size()) {
+            im.pairRolling[k] = orientation * h.rollingSpring[c];
+          }
+          break;
+        }
+      }
+    }
+  } else {
+    // Merge-join with the previous list to carry the history over.
+    std::size_t k = 0;
+    for (std::size_t o = 0; o < oldI.size(); ++o) {
+      while (k < pairs && (im.pairI[k] < oldI[o] || (im.pairI[k] == oldI[o] && im.pairJ[k] < oldJ[o]))) {
+        ++k;
+      }
+      if (k < pairs && im.pairI[k] == oldI[o] && im.pairJ[k] == oldJ[o]) {
+        im.pairSpring[k] = oldSpring[o];
+        if (rolling) {
+          im.pairRolling[k] = oldRolling[o];
+        }
+      }
+    }
+  }
+
+  // Gather lists: each particle's pairs in order of partner slot (a fixed order).
+  im.adjacencyStart.assign(n + 1, 0);
+  for (std::size_t k = 0; k < pairs; ++k) {
+    ++im.adjacencyStart[im.pairI[k] + 1];
+    ++im.adjacencyStart[im.pairJ[k] + 1];
+  }
+  std::partial_sum(im.adjacencyStart.begin(), im.adjacencyStart.end(), im.adjacencyStart.begin());
+  im.adjacency.assign(2 * pairs, 0);
+  std::vector<std::size_t> fill(im.adjacencyStart.begin(), im.adjacencyStart.end() - 1);
+  // Pairs are sorted by (i, j): visiting them in order appends, for each particle, the
+  // partners below it (as j) in increasing i, then the partners above it (as i) in
+  // increasing j. Both runs are sorted, and the first precedes the second.
+  for (std::size_t k = 0; k < pairs; ++k) {
+    im.adjacency[fill[im.pairJ[k]]++] = 2 * k + 1;
+  }
+  for (std::size_t k = 0; k < pairs; ++k) {
+    im.adjacency[fill[im.pairI[k]]++] = 2 * k;
+  }
+}
+
+void CpuBackend::rebuildWallContacts(bool carryHistory)
+{
+  ContactState& im = state_;
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const std::size_t n = p.size();
+  const bool rolling = contactModel_.rollingFriction > 0.0;
+  const double infinite = std::numeric_limits<double>::infinity();
+
+  std::vector<std::uint32_t> oldSlot, oldStart;
+  std::vector<std::uint8_t> oldIndex, oldTouching;
+  std::vector<Vec3> oldSpring, oldRolling;
+  if (carryHistory) {
+    oldSlot.swap(im.wallSlot);
+    oldStart.swap(im.wallStart);
+    oldIndex.swap(im.wallIndex);
+    oldTouching.swap(im.wallTouching);
+    oldSpring.swap(im.wallSpring);
+    oldRolling.swap(im.wallRolling);
+  }
+  im.wallSlot.clear();
+  im.wallIndex.clear();
+  im.wallStart.assign(n + 1, 0);
+  // A particle is a candidate for a wall when its gap was below the skin at the build.
+  // Until the next build, the particle moves by at most half the skin (from
+  // positionAtBuild) and the wall by at most half the skin: together, never more than
+  // the gap, so no contact is missed.
+  for (std::size_t i = 0; i < n; ++i) {
+    im.wallStart[i] = static_cast<std::uint32_t>(im.wallSlot.size());
+    for (int w = 0; w < 6; ++w) {
+      const Wall& wall = model_.walls[w];
+      const double side = wall.side == 0 ? 1.0 : -1.0;
+      const double gap = (im.positionAtBuild[i][wall.axis] - wall.position) * side - p.radius[i];
+      if (wall.active && gap < im.skinDistance) {
+        im.wallSlot.push_back(static_cast<std::uint32_t>(i));
+        im.wallIndex.push_back(static_cast<std::uint8_t>(w));
+      }
+    }
+  }
+  const std::size_t entries = im.wallSlot.size();
+  im.wallStart[n] = static_cast<std::uint32_t>(entries);
+  for (int w = 0; w < 6; ++w) {
+    im.wallPositionAtBuild[w] = model_.walls[w].position;
+    im.wallActiveAtBuild[w] = model_.walls[w].active;
+  }
+  im.wallConstants.resize(entries);
+  for (std::size_t e = 0; e < entries; ++e) {
+    const std::uint32_t i = im.wallSlot[e];
+    const double mass = im.inverseMass[i] > 0.0 ? p.mass[i] : infinite;
+    im.wallConstants[e] = contactConstants(contactModel_,
+      wallProperties(contactModel_, p.radius[i], mass, d.section2D, d.slabThickness()));
+  }
+  im.wallTouching.assign(entries, 0);
+  im.wallSpring.assign(entries, Vec3::Zero());
+  im.wallRolling.assign(rolling ? entries : 0, Vec3::Zero());
+  im.wallForce.assign(entries, Vec3::Zero());
+  im.wallNormal.assign(entries, 0.0);
+  im.wallStiffness.assign(entries, 0.0);
+  im.wallElastic.assign(entries, 0.0);
+  if (!carryHistory) {
+    return;
+  }
+  // Carry the history over: both lists are sorted by (slot, wall). A contact touching now
+  // is in the new list (its gap is negative).
+  std::size_t e = 0;
+  for (std::size_t o = 0; o < oldSlot.size(); ++o) {
+    if (!oldTouching[o] && oldSpring[o].isZero(0.0) && !(rolling && !oldRolling[o].isZero(0.0))) {
+      continue;
+    }
+    while (e < entries && (im.wallSlot[e] < oldSlot[o] ||
+                           (im.wallSlot[e] == oldSlot[o] && im.wallIndex[e] < oldIndex[o]))) {
+      ++e;
+    }
+    if (e < entries && im.wallSlot[e] == oldSlot[o] && im.wallIndex[e] == oldIndex[o]) {
+      im.wallTouching[e] = oldTouching[o];
+      im.wallSpring[e] = oldSpring[o];
+      if (rolling) {
+        im.wallRolling[e] = oldRolling[o];
+      }
+    }
+  }
+}
+
+bool CpuBackend::wallsMoved() const
+{
+  const ContactState& im = state_;
+  const double limit = 0.5 * im.skinDistance;
+  for (int w = 0; w < 6; ++w) {
+    const Wall& wall = model_.walls[w];
+    if (wall.active != im.wallActiveAtBuild[w] ||
+        (wall.active && !(std::abs(wall.position - im.wallPositionAtBuild[w]) <= limit))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// Forces
+
+void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
+{
+  ContactState& im = state_;
+  Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const ContactModel& cm = contactModel_;
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  const double dt = incrementHistory ? timestep_ : 0.0;
+  const double predict = 0.5 * dt; // s, half kick from the half-step to the full-step velocity
+  const bool rolling = cm.rollingFriction > 0.0;
+  const std::size_t n = p.size();
+  const long pairs = static_cast<long>(im.pairI.size());
+  const double infinite = std::numeric_limits<double>::infinity();
+  auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
+
+  const MinimumImage separationOf(d);
+
+  // 1. Each pair once.
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairs; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
+    const double distance = branch.norm();
+    const double overlap = p.radius[i] + p.radius[j] - distance;
+    if (overlap <= 0.0 || distance == 0.0) {
+      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
+          (rolling && !im.pairRolling[k].isZero(0.0))) {
+        // The contact just ended: clear its force and history (once, not every step).
+        im.pairForce[k].setZero();
+        im.pairTorqueI[k].setZero();
+        im.pairTorqueJ[k].setZero();
+        im.pairNormal[k] = 0.0;
+        im.pairSpring[k].setZero();
+        if (rolling) {
+          im.pairRolling[k].setZero();
+        }
+      }
+      continue;
+    }
+    const Vec3 normal = branch / distance;
+    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
+    const double armJ = p.radius[j] - 0.5 * overlap;
+    // Slip over the step uses the half-step velocities (exact for the displacement
+    // increment); the viscous damping uses the full-step velocities, predicted from the
+    // last forces, so that restitution does not drift with the number of steps per impact.
+    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+    const Vec3 predictedVelocity = relativeVelocity +
+      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
+    const double approachSpeed = predictedVelocity.dot(normal);
+    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
+    const double fn = response.force;
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft =
+      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
+    Vec3 torqueI = armI * normal.cross(ft);
+    Vec3 torqueJ = armJ * normal.cross(ft);
+    if (rolling) {
+      const PairProperties pair =
+        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
+      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
+      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
+      torqueI += mr;
+      torqueJ -= mr;
+    }
+    im.pairForce[k] = -fn * normal + ft;
+    im.pairTorqueI[k] = torqueI;
+    im.pairTorqueJ[k] = torqueJ;
+    im.pairNormal[k] = fn;
+    if (fn != 0.0) {
+      // Two threads may mark the same particle: both write 1.
+#pragma omp atomic write
+      im.touching[i] = 1;
+#pragma omp atomic write
+      im.touching[j] = 1;
+    }
+  }
+
+  // 2. Bonds, each once (state updated and failure checked only on a real step).
+  computeBondForces(incrementHistory);
+
+  // 3. Walls. During a press test the walls are frictionless (the usual choice for
+  // servo-controlled faces and platens: a face must be free to follow the specimen's
+  // lateral expansion without shear from it). Evaluated in the gather below, by the
+  // particle's own thread: wall entry e of particle i adds its force and torque.
+  ContactModel wallModel = cm;
+  if (model_.test.settings.mode != TestMode::Off) {
+    wallModel.friction = 0.0;
+    wallModel.rollingFriction = 0.0;
+  }
+  const bool wallRolling = wallModel.rollingFriction > 0.0;
+  auto wallContact = [&](std::size_t e, std::size_t i, Vec3& force, Vec3& torque) {
+    const Wall& wall = model_.walls[im.wallIndex[e]];
+    const double side = wall.side == 0 ? 1.0 : -1.0;
+    const double distance = (p.position[i][wall.axis] - wall.position) * side;
+    const double overlap = wall.active ? p.radius[i] - distance : 0.0;
+    if (overlap <= 0.0) {
+      if (im.wallTouching[e] || !im.wallSpring[e].isZero(0.0)) {
+        // The contact just ended: clear its force and history once.
+        im.wallTouching[e] = 0;
+        im.wallForce[e].setZero();
+        im.wallNormal[e] = 0.0;
+        im.wallStiffness[e] = 0.0;
+        im.wallElastic[e] = 0.0;
+        im.wallSpring[e].setZero();
+        if (rolling) {
+          im.wallRolling[e].setZero();
+        }
+      }
+      return;
+    }
+    const Vec3 normal = -wall.normal(); // from the centre towards the wall
+    const double arm = p.radius[i] - overlap;
+    Vec3 wallVelocity = Vec3::Zero();
+    wallVelocity[wall.axis] = wall.velocity;
+    const Vec3 relativeVelocity =
+      p.velocity[i] - wallVelocity + p.angularVelocity[i].cross(arm * normal);
+    const double approachSpeed =
+      (relativeVelocity + predict * im.inverseMass[i] * p.force[i]).dot(normal);
+    const NormalResponse response =
+      normalResponse(cm.law, im.wallConstants[e], overlap, approachSpeed);
+    const double fn = response.force;
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft = mindlinCoulombForce(response.tangentialStiffness, wallModel.friction, fn,
+                                        normal, slip, im.wallSpring[e]);
+    Vec3 contactTorque = arm * normal.cross(ft);
+    if (wallRolling) {
+      const PairProperties pair = wallProperties(wallModel, p.radius[i], massOf(i), planar, slab);
+      const Vec3 roll = inPlane(p.angularVelocity[i], normal) * dt;
+      contactTorque += rollingTorque(wallModel, pair, overlap, fn, normal, roll, im.wallRolling[e]);
+    } else if (rolling) {
+      im.wallRolling[e].setZero(); // rolling resistance off against frictionless walls
+    }
+    im.wallTouching[e] = 1;
+    im.wallForce[e] = -fn * normal + ft;
+    im.wallNormal[e] = fn;
+    im.wallStiffness[e] = response.stiffness;
+    im.wallElastic[e] = response.elasticForce; // no viscous part
+    force += im.wallForce[e];
+    torque += contactTorque;
+  };
+
+  // 4. Gather per particle in a fixed order (pairs by partner slot, then walls, then
+  // bonds); Cundall damping on the unbalanced force; on a real step, the closing half
+  // kick of the velocity Verlet step.
+  const double alpha = model_.solver.settlingDamping;
+  const Vec3 gravity = model_.gravity;
+  const double half = 0.5 * timestep_;
+  const long count = static_cast<long>(n);
+  const bool anyBonds = !im.bondI.empty();
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    Vec3 force = p.mass[i] * gravity;
+    Vec3 torque = Vec3::Zero();
+    // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+    const std::size_t pairEnd = im.touching[i] ? im.adjacencyStart[i + 1] : im.adjacencyStart[i];
+    im.touching[i] = 0;
+    for (std::size_t e = im.adjacencyStart[i]; e < pairEnd; ++e) {
+      const std::size_t k = im.adjacency[e] >> 1;
+      if (im.pairNormal[k] == 0.0) {
+        continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
+      }
+      if (im.adjacency[e] & 1u) {
+        force -= im.pairForce[k];
+        torque += im.pairTorqueJ[k];
+      } else {
+        force += im.pairForce[k];
+        torque += im.pairTorqueI[k];
+      }
+    }
+    for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
+      wallContact(e, i, force, torque);
+    }
+    if (anyBonds) {
+      for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+        const std::size_t b = im.bondAdjacency[e] >> 1;
+        if (model_.bonds.broken(b)) {
+          continue;
+        }
+        if (im.bondAdjacency[e] & 1u) {
+          force -= im.bondForce[b];
+          torque += im.bondTorqueJ[b];
+        } else {
+          force += im.bondForce[b];
+          torque += im.bondTorqueI[b];
+        }
+      }
+    }
+    if (planar) {
+      force.z() = 0.0;
+      torque.x() = 0.0;
+      torque.y() = 0.0;
+    }
+    im.undampedForce[i] = force;
+    Vec3 damped = force;
+    Vec3 dampedTorque = torque;
+    if (alpha > 0.0) {
+      for (int c = 0; c < 3; ++c) {
+        damped[c] = cundall(force[c], p.velocity[i][c], alpha);
+        dampedTorque[c] = cundall(torque[c], p.angularVelocity[i][c], alpha);
+      }
+    }
+    p.force[i] = damped;
+    p.torque[i] = dampedTorque;
+    if (closingKick && im.inverseMass[i] != 0.0) {
+      p.velocity[i] += (half * im.inverseMass[i]) * damped;
+      p.angularVelocity[i] += (half * im.inverseInertia[i]) * dampedTorque;
+      if (planar) {
+        p.velocity[i].z() = 0.0;
+        p.angularVelocity[i].x() = 0.0;
+        p.angularVelocity[i].y() = 0.0;
+      }
+    }
+  }
+
+  // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
+  // wall's sum runs in slot order (deterministic).
+  std::array<Vec3, 6> reaction;
+  reaction.fill(Vec3::Zero());
+  std::array<double, 6> stiffness{};
+  std::array<double, 6> elastic{};
+  std::array<std::int64_t, 6> contacts{};
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
+    if (im.wallTouching[e]) {
+      const int w = im.wallIndex[e];
+      reaction[w] -= im.wallForce[e];
+      stiffness[w] += im.wallStiffness[e];
+      elastic[w] += im.wallElastic[e];
+      ++contacts[w];
+    }
+  }
+  for (int w = 0; w < 6; ++w) {
+    model_.walls[w].elasticForce = elastic[w];
+    model_.walls[w].force = reaction[w];
+    model_.walls[w].contactStiffness = stiffness[w];
+    model_.walls[w].contacts = contacts[w];
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bonds
+
+void CpuBackend::buildBondLists()
+{
+  ContactState& im = state_;
+  const Particles& p = model_.particles;
+  const Bonds& b = model_.bonds;
+  const std::size_t n = p.size();
+  const SlotLookup slots(p);
+  auto findSlot = [&](std::int64_t id) {
+    const long slot = slots.find(id);
+    if (slot < 0) {
+      throw InputError("A bond refers to particle " + std::to_string(id) +
+                       ", which is not in the model.");
+    }
+    return static_cast<std::uint32_t>(slot);
+  };
+  im.bondI.resize(b.size());
+  im.bondJ.resize(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    im.bondI[k] = findSlot(b.idA[k]);
+    im.bondJ[k] = findSlot(b.idB[k]);
+  }
+  im.bondForce.assign(b.size(), Vec3::Zero());
+  im.bondTorqueI.assign(b.size(), Vec3::Zero());
+  im.bondTorqueJ.assign(b.size(), Vec3::Zero());
+  // Gather lists in bond order (a fixed order).
+  im.bondAdjacencyStart.assign(n + 1, 0);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    ++im.bondAdjacencyStart[im.bondI[k] + 1];
+    ++im.bondAdjacencyStart[im.bondJ[k] + 1];
+  }
+  std::partial_sum(im.bondAdjacencyStart.begin(), im.bondAdjacencyStart.end(),
+                   im.bondAdjacencyStart.begin());
+  im.bondAdjacency.assign(2 * b.size(), 0);
+  std::vector<std::size_t> fill(im.bondAdjacencyStart.begin(), im.bondAdjacencyStart.end() - 1);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    im.bondAdjacency[fill[im.bondI[k]]++] = 2 * k;
+    im.bondAdjacency[fill[im.bondJ[k]]++] = 2 * k + 1;
+  }
+}
+
+void CpuBackend::computeBondForces(bool incrementState)
+{
+  ContactState& im = state_;
+  Particles& p = model_.particles;
+  Bonds& b = model_.bonds;
+  const Domain& d = model_.domain;
+  const bool planar = d.section2D;
+  const double slab = d.slabThickness();
+  const double dt = timestep_;
+  const double endTime = model_.clock.time + dt;
+  const long count = static_cast<long>(b.size());
+  if (count == 0) {
+    return;
+  }
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long lk = 0; lk < count; ++lk) {
+    const std::size_t k = static_cast<std::size_t>(lk);
+    if (b.broken(k)) {
+      continue;
+    }
+    const std::uint32_t i = im.bondI[k];
+    const std::uint32_t j = im.bondJ[k];
+    const Vec3 branch = separation(d, p.position[i], p.position[j]); // A to B
+    const double distance = branch.norm();
+    const Vec3 normal = branch / distance;
+    // The contact point divides the branch in the ratio of the radii.
+    const double armI = distance * p.radius[i] / (p.radius[i] + p.radius[j]);
+    const double armJ = distance - armI;
+    const BondSection section = bondSection(b.radius[k], planar, slab);
+    if (incrementState) {
+      const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+        p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+      const Vec3 relativeSpin = p.angularVelocity[i] - p.angularVelocity[j];
+      const double kn = b.normalStiffness[k];
+      const double ks = b.shearStiffness[k];
+      // dFn = kn A d(separation): positive (tension) when B moves away from A.
+      b.normalForce[k] -= kn * section.area * relativeVelocity.dot(normal) * dt;
+      // dFs = -ks A (tangential displacement of A relative to B), in the rotated plane.
+      b.shearForce[k] = rotateIntoPlane(b.shearForce[k], normal) -
+        ks * section.area * inPlane(relativeVelocity, normal) * dt;
+      // dMt = -ks J d(theta twist) (3D); dMb = -kn I d(theta bend).
+      if (!planar) {
+        b.twistingMoment[k] -= ks * section.polar * relativeSpin.dot(normal) * dt;
+      }
+      b.bendingMoment[k] = rotateIntoPlane(b.bendingMoment[k], normal) -
+        kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+      const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
+        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+      const BondFailure failure =
+        bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
+      if (failure != BondFailure::Intact) {
+        // Broken for good: record how, when, where and how it was oriented.
+        b.markBroken(k, failure, endTime, p.position[i] + armI * normal, normal);
+        im.bondForce[k].setZero();
+        im.bondTorqueI[k].setZero();
+        im.bondTorqueJ[k].setZero();
+        continue;
+      }
+    }
+    const Vec3 twist = b.twistingMoment[k] * normal;
+    im.bondForce[k] = b.normalForce[k] * normal + b.shearForce[k];
+    im.bondTorqueI[k] = armI * normal.cross(b.shearForce[k]) + twist + b.bendingMoment[k];
+    im.bondTorqueJ[k] = armJ * normal.cross(b.shearForce[k]) - twist - b.bendingMoment[k];
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Stepping
+
+void CpuBackend::step()
+{
+  ContactState& im = state_;
+  Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  const double dt = timestep_;
+  const double half = 0.5 * dt;
+  const bool planar = d.section2D;
+  const long count = static_cast<long>(p.size());
+  const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+  const double limit2 = limit * limit;
+  const MinimumImage separationOf(d);
+  const std::array<bool, 3> periodic = d.periodic;
+  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
+
+  // Half kick with the forces of the last step, then drift; note whether any particle
+  // has moved half the skin since the neighbour list was built.
+  bool stale = false;
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+    // 0), but it moves with the velocity it was given (at rest unless prescribed).
+    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
+    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
+    if (planar) {
+      p.velocity[i].z() = 0.0;
+      p.angularVelocity[i].x() = 0.0;
+      p.angularVelocity[i].y() = 0.0;
+    }
+    const Vec3 move = dt * p.velocity[i];
+    p.position[i] += move;
+    p.displacement[i] += move;
+    for (int k = 0; anyPeriodic && k < 3; ++k) {
+      if (periodic[k]) {
+        const double lo = d.origin[k];
+        const double length = d.size[k];
+        if (p.position[i][k] < lo) {
+          p.position[i][k] += length;
+        } else if (p.position[i][k] >= lo + length) {
+          p.position[i][k] -= length;
+        }
+      }
+    }
+    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+      stale = true;
+    }
+  }
+  controlWalls(model_, timestep_, im.smallestRadius);
+  for (Wall& wall : model_.walls) {
+    wall.position += wall.velocity * dt;
+  }
+
+  if (stale) {
+    rebuildNeighbours(false);
+  } else if (wallsMoved()) {
+    rebuildWallContacts(true);
+  }
+  // New forces, then the second half kick (in the same pass).
+  computeForces(true, true);
+  model_.clock.step += 1;
+  model_.clock.time += dt;
+}
+
+} // namespace dem

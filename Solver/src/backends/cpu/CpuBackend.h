@@ -1,0 +1,55 @@
+// RockDEM engine: the CPU backend (serial below SolverSettings::parallelThreshold
+// particles, OpenMP above; the result never depends on the number of threads).
+//
+// One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> wall control
+// (dem::controlWalls) and wall motion -> Verlet neighbour list update when any particle
+// has moved half the skin (the list of particles near each wall with it, or alone when a
+// wall has moved half the skin) -> pair forces (each pair once) -> bond forces ->
+// per-particle gather in a fixed order (pairs by partner slot, then its wall contacts,
+// evaluated there, then bonds) -> Cundall local damping -> half kick -> wall reaction sums
+// in slot order -> clock. Velocity Verlet; velocity-dependent forces use the half-step
+// velocity. No floating-point atomics, fixed summation order. It steps the Model's own
+// particle arrays in place. SI units throughout.
+#pragma once
+
+#include "backends/ContactState.h"
+#include "dem/Backend.h"
+#include "dem/ContactLaws.h"
+#include "dem/Model.h"
+
+#include <cstdint>
+#include <string>
+
+namespace dem {
+
+class CpuBackend final : public Backend {
+public:
+  /// Builds the neighbour list (importing model.contacts by global ids) and the bond lists;
+  /// a model that never stepped gets its first forces, a resumed one keeps its stored
+  /// forces, springs and wall reactions bit for bit. `timestep` (s) as the driver chose it.
+  CpuBackend(Model& model, const ContactModel& contactModel, double timestep);
+
+  std::string path() const override;
+  void run(std::int64_t steps) override;
+  const ContactState& sync() override { return state_; }
+  StabilityReport stability() override;
+
+  /// The contact state, for a backend that starts from the CPU's (the Vulkan backend).
+  ContactState& state() { return state_; }
+
+private:
+  void rebuildNeighbours(bool importModelHistory);
+  void rebuildWallContacts(bool carryHistory);
+  bool wallsMoved() const;
+  void buildBondLists();
+  void computeBondForces(bool incrementState);
+  void computeForces(bool incrementHistory, bool closingKick);
+  void step();
+
+  Model& model_;
+  ContactModel contactModel_;
+  double timestep_ = 0.0;
+  ContactState state_;
+};
+
+} // namespace dem
