@@ -245,10 +245,12 @@ void pqRockDEMAutoStart::colorByDefault(pqDataRepresentation* representation)
   const char* name = source->getProxy()->GetXMLName();
   if (!name || std::strcmp(name, "DEMFracturesToDFN") != 0)
   {
-    // Another RockDEM model left uncoloured (a state file opened with File > Open):
-    // coloured by Radius, like a pack.
+    // Another RockDEM model left uncoloured (a state file opened with File > Open), or a
+    // cemented model (ParaView would carry its input's colouring over, the Displacement of
+    // the stage before, which says nothing about this one): coloured by Radius, like a pack.
     const char* colored = vtkSMPropertyHelper(rep, "ColorArrayName").GetInputArrayNameToProcess();
-    if (isRockDEM(source) && (!colored || !*colored) &&
+    const bool cement = name && std::strcmp(name, "DEMCement") == 0;
+    if (isRockDEM(source) && (!colored || !*colored || cement) &&
       vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Radius", 0 /* points */))
     {
       vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(rep, false, false);

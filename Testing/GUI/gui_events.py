@@ -210,6 +210,9 @@ the state is saved through File > Save State. Written by gui_events.py.""", [
     wait(300),
     python("cement = g.source('DEMCement1'); g.check(g.value(cement, 'Bonds') > 1000, "
            "'DEM Cement installed %d bonds (read-only Bonds, an integer, shown)' % g.value(cement, 'Bonds'))"),
+    python("g.check(GetDisplayProperties(cement).ColorArrayName[1] == 'Radius', "
+           "'the cemented model is coloured by Radius, not by the Displacement of the stage before (%s)' "
+           "% (GetDisplayProperties(cement).ColorArrayName,))"),
     python("g.shot('06_cemented')"),
     # unconfined compression until the test finishes
     menu("menuFilters", "DEMLoadTest"),
@@ -318,6 +321,13 @@ gui_events.py.""", [
            "'the layout is back: %d layout(s), %d views (%s)' % (len(GetLayouts()), len(views), [v.GetXMLName() for v in views]))"),
     python("g.check(seconds < 30.0, 'reopened in %.1f s (under 30 s): the frames came from the checkpoints' % seconds)"),
     python("g.shot('12_main_job_state')"),
+    # The main job's state holds the test chart's row selection: an Apply after loading it
+    # (the sequence that crashed ParaView with the old selection) keeps ParaView running.
+    menu("menuSources", "SphereSource"),
+    APPLY,
+    wait(500),
+    python("g.check(g.source('Sphere1') is not None and any(p.GetXMLName() == 'AppendSelections' for p in GetSources().values()), "
+           "'a Sphere applied after loading the main job state (with its row selection): ParaView is still running')"),
 ])
 
 # --- 6. The sequence that used to crash ParaView ----------------------------------------
