@@ -463,6 +463,19 @@ void vtkDEMLoadTest::PublishTimeSteps(vtkInformationVector* outputVector)
   }
 }
 
+dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
+{
+  dem::LoadTestSettings press;
+  press.mode = static_cast<dem::TestMode>(this->Mode);
+  press.axis = this->Axis;
+  press.confiningStress = this->ConfiningStress;
+  press.strainRate = this->StrainRate;
+  press.maxStrain = this->MaxStrain;
+  press.servoAlpha = this->ServoAlpha;
+  press.sampleInterval = this->SampleInterval;
+  return press;
+}
+
 int vtkDEMLoadTest::FrameOf(double time)
 {
   const vtkInternals& in = *this->Internals;
@@ -545,14 +558,7 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
     in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
       " m/s^2 along Z acts along -Y in the section plane.";
   }
-  dem::LoadTestSettings press;
-  press.mode = static_cast<dem::TestMode>(this->Mode);
-  press.axis = this->Axis;
-  press.confiningStress = this->ConfiningStress;
-  press.strainRate = this->StrainRate;
-  press.maxStrain = this->MaxStrain;
-  press.servoAlpha = this->ServoAlpha;
-  press.sampleInterval = this->SampleInterval;
+  const dem::LoadTestSettings press = this->PressSettings();
   // Start the press (Mode Off restores the box) before the simulation sees the model,
   // unless the input's test is this one in progress (a reopened state file): then it
   // continues exactly where it stopped.
@@ -785,14 +791,7 @@ int vtkDEMLoadTest::RequestData(
         " is out of range: valid modes are Off (0), Compression (1), Tension (2), Triaxial (3), "
         "Isotropic (4).");
     }
-    dem::LoadTestSettings press;
-    press.mode = static_cast<dem::TestMode>(this->Mode);
-    press.axis = this->Axis;
-    press.confiningStress = this->ConfiningStress;
-    press.strainRate = this->StrainRate;
-    press.maxStrain = this->MaxStrain;
-    press.servoAlpha = this->ServoAlpha;
-    press.sampleInterval = this->SampleInterval;
+    const dem::LoadTestSettings press = this->PressSettings();
     dem::validate(press);
     if (!(this->FrameInterval >= 0.0) || !std::isfinite(this->FrameInterval))
     {

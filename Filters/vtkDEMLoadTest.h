@@ -53,6 +53,10 @@
 class vtkMultiBlockDataSet;
 
 class vtkInformationVector;
+namespace dem
+{
+struct LoadTestSettings;
+}
 
 class ROCKDEMFILTERS_EXPORT vtkDEMLoadTest : public vtkMultiBlockDataSetAlgorithm
 {
@@ -354,6 +358,8 @@ private:
   void PublishTimeSteps(vtkInformationVector* outputVector);
   /// The frame a requested time asks for (snapped, clamped to the published frames).
   int FrameOf(double time);
+  /// The press settings of this stage's properties (Mode, Axis, Confining Stress, ...).
+  dem::LoadTestSettings PressSettings() const;
   /// The published frames, 0 .. LastFrame(); -1: nothing to publish (invalid settings).
   int LastFrame();
   /// Builds the cache from the input (the stage starts).
