@@ -250,10 +250,24 @@ void pqRockDEMAutoStart::colorByDefault(pqDataRepresentation* representation)
     // the stage before, which says nothing about this one): coloured by Radius, like a pack.
     const char* colored = vtkSMPropertyHelper(rep, "ColorArrayName").GetInputArrayNameToProcess();
     const bool cement = name && std::strcmp(name, "DEMCement") == 0;
-    if (isRockDEM(source) && (!colored || !*colored || cement) &&
-      vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Radius", 0 /* points */))
+    if (!isRockDEM(source) || (colored && *colored && !cement))
+    {
+      return;
+    }
+    // The legend of the carried-over colouring goes; the one of Radius is shown.
+    pqView* view = representation->getView();
+    vtkSMProxy* viewProxy = view ? view->getProxy() : nullptr;
+    if (viewProxy)
+    {
+      vtkSMPVRepresentationProxy::SetScalarBarVisibility(rep, viewProxy, false);
+    }
+    if (vtkSMPVRepresentationProxy::SetScalarColoring(rep, "Radius", 0 /* points */))
     {
       vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(rep, false, false);
+      if (viewProxy)
+      {
+        vtkSMPVRepresentationProxy::SetScalarBarVisibility(rep, viewProxy, true);
+      }
       rep->UpdateVTKObjects();
       representation->renderViewEventually();
     }

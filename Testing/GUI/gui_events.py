@@ -210,9 +210,11 @@ the state is saved through File > Save State. Written by gui_events.py.""", [
     wait(300),
     python("cement = g.source('DEMCement1'); g.check(g.value(cement, 'Bonds') > 1000, "
            "'DEM Cement installed %d bonds (read-only Bonds, an integer, shown)' % g.value(cement, 'Bonds'))"),
-    python("g.check(GetDisplayProperties(cement).ColorArrayName[1] == 'Radius', "
-           "'the cemented model is coloured by Radius, not by the Displacement of the stage before (%s)' "
-           "% (GetDisplayProperties(cement).ColorArrayName,))"),
+    python("dc = GetDisplayProperties(cement); v = GetActiveView(); "
+           "g.check(dc.ColorArrayName[1] == 'Radius' and GetScalarBar(GetColorTransferFunction('Radius'), v).Visibility == 1 "
+           "and GetScalarBar(GetColorTransferFunction('Displacement'), v).Visibility == 0, "
+           "'the cemented model is coloured by Radius with its legend, not by the Displacement of the stage before (%s)' "
+           "% (dc.ColorArrayName,))"),
     python("g.shot('06_cemented')"),
     # unconfined compression until the test finishes
     menu("menuFilters", "DEMLoadTest"),
