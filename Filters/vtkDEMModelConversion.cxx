@@ -1,6 +1,7 @@
 #include "vtkDEMModelConversion.h"
 
 #include "dem/Errors.h"
+#include "dem/ParticleStress.h"
 #include "dem/SizeClass.h"
 
 #include <vtkCellArray.h>
@@ -283,6 +284,31 @@ void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
   }
   pd->AddArray(fixed);
   pd->AddArray(sizeClass);
+
+  // Derived: the stress each particle carries (dem/ParticleStress.h), evaluated from the
+  // model state, so a reloaded model shows the same values (not read back).
+  const std::vector<dem::StressTensor> stress = dem::particleStresses(model);
+  const bool planar = model.domain.section2D;
+  vtkNew<vtkDoubleArray> tensor;
+  tensor->SetName("Stress");
+  tensor->SetNumberOfComponents(6);
+  tensor->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> mean;
+  mean->SetName("MeanStress");
+  mean->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> vonMises;
+  vonMises->SetName("VonMisesStress");
+  vonMises->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const dem::StressTensor& s = stress[static_cast<std::size_t>(i)];
+    tensor->SetTypedTuple(i, s.data());
+    mean->SetValue(i, dem::meanStress(s, planar));
+    vonMises->SetValue(i, dem::vonMisesStress(s, planar));
+  }
+  pd->AddArray(tensor);
+  pd->AddArray(mean);
+  pd->AddArray(vonMises);
 }
 
 void WallsToPolyData(const dem::Model& model, vtkPolyData* output)

@@ -5,7 +5,9 @@
  * A model travels between RockDEM filters as a vtkMultiBlockDataSet:
  * - block "Particles": vtkPolyData, one vertex per particle, double-precision points
  *   (m) and point arrays Id, Radius (m), Velocity (m/s), AngularVelocity (rad/s),
- *   Displacement (m), Force (N), Mass (kg), Inertia (kg m^2), Flags, Fixed, SizeClass.
+ *   Displacement (m), Force (N), Mass (kg), Inertia (kg m^2), Flags, Fixed, SizeClass, and
+ *   the derived stress the particle carries (dem/ParticleStress.h; not read back): Stress
+ *   (Pa, 6 components xx yy zz xy yz xz, compression positive), MeanStress, VonMisesStress.
  * - block "Walls": vtkPolyData, the active walls as quads with cell arrays Axis, Side,
  *   Position (m), Velocity (m/s), Force (N) and Stress (Pa, normal force over face area).
  * - block "Contacts": vtkPolyData without points whose field data holds the contact

@@ -1,5 +1,6 @@
 #include "vtkDEMSeedFractures.h"
 
+#include "vtkDEMFracturePolygons.h"
 #include "vtkDEMModelConversion.h"
 #include "vtkDEMPipelineTime.h"
 
@@ -7,16 +8,12 @@
 #include "dem/Model.h"
 #include "dem/SeedFractures.h"
 
-#include <vtkCellArray.h>
-#include <vtkCellArrayIterator.h>
-#include <vtkSmartPointer.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -77,41 +74,7 @@ int vtkDEMSeedFractures::RequestData(
       throw dem::InputError("DEM Seed Fractures needs the fracture polygons on its Fractures input.");
     }
     // Polygons, triangles and quads (Polys), and triangle strips split into triangles.
-    std::vector<dem::FracturePolygon> polygons;
-    vtkPoints* points = fractures->GetPoints();
-    auto vertex = [&](vtkIdType id) {
-      double x[3];
-      points->GetPoint(id, x);
-      return dem::Vec3(x[0], x[1], x[2]);
-    };
-    vtkIdType npts = 0;
-    const vtkIdType* ids = nullptr;
-    if (points && fractures->GetPolys())
-    {
-      auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(fractures->GetPolys()->NewIterator());
-      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-      {
-        it->GetCurrentCell(npts, ids);
-        dem::FracturePolygon poly;
-        for (vtkIdType k = 0; k < npts; ++k)
-        {
-          poly.push_back(vertex(ids[k]));
-        }
-        polygons.push_back(std::move(poly));
-      }
-    }
-    if (points && fractures->GetStrips())
-    {
-      auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(fractures->GetStrips()->NewIterator());
-      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-      {
-        it->GetCurrentCell(npts, ids);
-        for (vtkIdType k = 0; k + 2 < npts; ++k)
-        {
-          polygons.push_back({ vertex(ids[k]), vertex(ids[k + 1]), vertex(ids[k + 2]) });
-        }
-      }
-    }
+    const std::vector<dem::FracturePolygon> polygons = rockdem::FracturePolygons(fractures);
     if (polygons.empty())
     {
       throw dem::InputError("DEM Seed Fractures: the Fractures input has no polygons (" +

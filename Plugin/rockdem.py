@@ -401,6 +401,16 @@ def triaxial_series(cemented_source, confining_stresses, delete=True, progress=N
 FRACTURE_SET_COLORS = ((0.85, 0.15, 0.15), (0.15, 0.35, 0.85), (0.2, 0.7, 0.2))
 
 
+def _categorical_colors(array, categories, colors):
+    """Make the colour map of ``array`` categorical: ``categories`` is a list of
+    (value, label), ``colors`` the RGB (0-1) of each, in the same order. Returns the map."""
+    lut = _simple.GetColorTransferFunction(array)
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = [text for value, label in categories for text in (str(value), label)]
+    lut.IndexedColors = [c for rgb in colors for c in rgb]
+    return lut
+
+
 def show_fractures(dfn, view=None, model=None, opacity=0.85):
     """Show the discs of a DEM Fractures To DFN (output port 0) coloured by Set.
 
@@ -417,8 +427,245 @@ def show_fractures(dfn, view=None, model=None, opacity=0.85):
     display.SetRepresentationType("Surface")
     display.Opacity = opacity
     _simple.ColorBy(display, ("CELLS", "Set"))
-    lut = _simple.GetColorTransferFunction("Set")
-    lut.InterpretValuesAsCategories = 1
-    lut.Annotations = ["0", "Tensile", "1", "Shear", "2", "Inherited"]
-    lut.IndexedColors = [c for rgb in FRACTURE_SET_COLORS for c in rgb]
+    _categorical_colors("Set", [(0, "Tensile"), (1, "Shear"), (2, "Inherited")], FRACTURE_SET_COLORS)
     return display
+
+
+# ---------------------------------------------------------------------------------------
+# Seeing inside the rock: sections, voxel models, close-up rendering
+# (DEM Section, DEM Voxelize; Documentation/Sections.md).
+# ---------------------------------------------------------------------------------------
+
+#: Colours of the broken-bond traces by FailureMode (1 tension, 2 shear, 3 inherited): the
+#: colours of the fracture sets they become (FRACTURE_SET_COLORS).
+FAILURE_MODE_COLORS = FRACTURE_SET_COLORS
+
+
+def compress_until_failure(model, fraction=0.6, **props):
+    """Unconfined compression of a cemented model past its peak: a DEM Load Test (Mode
+    Compression) run frame by frame until the axial stress has fallen to ``fraction`` of
+    the peak stress. props go to DEM Load Test (StrainRate, MaxStrain, FrameInterval,
+    NumberOfFrames, SampleInterval, ...; Gravity defaults to 0, as in a press). Returns
+    (proxy, the time of that frame in s); the time is None when the last frame comes
+    first (the test then stands at its last frame).
+    """
+    props = dict(props)
+    props.setdefault("Gravity", [0.0, 0.0, 0.0])
+    press = _filter("DEMLoadTest")(Input=model, Mode="Compression", **props)
+    for t in list(press.TimestepValues)[1:]:
+        press.UpdatePipeline(t)
+        peak = read_only(press, "PeakStress")
+        if peak > 0 and read_only(press, "AxialStress") < fraction * peak:
+            return press, t
+    return press, None
+
+
+def section(model, orientation="XY", origin=None, normal=None, **props):
+    """A DEM Section of a RockDEM model.
+
+    orientation: 'XY', 'XZ', 'YZ' (the reference guide's sections: planes of constant Z, Y,
+    X) or 'Custom' (give ``normal``). origin: a point of the plane (m); default the centre
+    of the model's bounds. props go to the proxy (TraceDistance, CircleSides). Returns the
+    proxy; its outputs are port 0 the circles, port 1 the bond crossings, port 2 the
+    broken-bond traces.
+    """
+    if normal is not None and orientation != "Custom":
+        raise ValueError("a normal is only used with orientation 'Custom' (got %r)" % orientation)
+    props = dict(props)
+    props["Section"] = orientation
+    if normal is not None:
+        props["Normal"] = list(normal)
+    proxy = _filter("DEMSection")(Input=model, **props)
+    if origin is not None:
+        proxy.Origin = list(origin)
+    return proxy
+
+
+def show_section(section_proxy, view=None, color_by="VonMisesStress", traces=True, crossings=False,
+                 trace_width=3.0):
+    """Show a DEM Section: the circles (port 0) as surfaces coloured by a particle array
+    (``color_by``, e.g. 'VonMisesStress', 'MeanStress', 'Radius'; None for plain grey),
+    with ``traces`` the broken-bond traces (port 2) as lines coloured by FailureMode (red
+    tension, blue shear, green inherited), with ``crossings`` the intact bonds crossing the
+    plane (port 1) as points. Returns the circles' representation."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    display = _simple.Show(_simple.OutputPort(section_proxy, 0), view)
+    display.SetRepresentationType("Surface")
+    if color_by:
+        _simple.ColorBy(display, ("CELLS", color_by))
+        display.RescaleTransferFunctionToDataRange(True, False)
+        display.SetScalarBarVisibility(view, True)
+    else:
+        display.ColorArrayName = ["POINTS", ""]
+    if traces:
+        lines = _simple.Show(_simple.OutputPort(section_proxy, 2), view)
+        lines.SetRepresentationType("Wireframe")
+        lines.LineWidth = trace_width
+        _simple.ColorBy(lines, ("CELLS", "FailureMode"))
+        lut = _categorical_colors("FailureMode", [(1, "Tension"), (2, "Shear"), (3, "Inherited")],
+                                  FAILURE_MODE_COLORS)
+        lines.SetScalarBarVisibility(view, True)
+        bar = _simple.GetScalarBar(lut, view)
+        bar.Title = "Failure Mode"
+        bar.ComponentTitle = ""
+    if crossings:
+        points = _simple.Show(_simple.OutputPort(section_proxy, 1), view)
+        points.SetRepresentationType("Points")
+        points.PointSize = 4.0
+        points.ColorArrayName = ["POINTS", ""]
+        points.AmbientColor = points.DiffuseColor = [0.1, 0.1, 0.1]
+    return display
+
+
+def voxelize(model, number_of_voxels=64, voxel_size=None, fractures=None, **props):
+    """A DEM Voxelize of a RockDEM model: ``number_of_voxels`` along the longest axis, or
+    cubes of ``voxel_size`` (m) when given; ``fractures``: a DFN (e.g. a DEM Fractures To
+    DFN) rasterised into FractureIntensity. props go to the proxy (MemoryLimit). Returns
+    the proxy (a vtkImageData: volume rendering, Contour, Slice, Save Data as .vti)."""
+    props = dict(props)
+    if voxel_size is not None:
+        props.update(SizeBy="Voxel Size", VoxelSize=float(voxel_size))
+    else:
+        props.update(SizeBy="Number Of Voxels", NumberOfVoxels=int(number_of_voxels))
+    if fractures is not None:
+        props["Fractures"] = fractures
+    return _filter("DEMVoxelize")(Input=model, **props)
+
+
+def show_voxels(voxels, view=None, array="Damage", opacity=None, color_map="Inferno (matplotlib)"):
+    """Volume-render an array of a DEM Voxelize (default Damage). ``opacity``: the scalar
+    opacity as [value, alpha, value, alpha, ...] (default: transparent at 0 rising to 0.8
+    at the array's maximum). Returns the representation."""
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    display = _simple.Show(voxels, view)
+    _simple.ColorBy(display, ("POINTS", array))
+    display.SetRepresentationType("Volume")
+    display.RescaleTransferFunctionToDataRange(True, False)
+    lut = _simple.GetColorTransferFunction(array)
+    lut.ApplyPreset(color_map, True)
+    pwf = _simple.GetOpacityTransferFunction(array)
+    low, high = voxels.PointData[array].GetRange()
+    if opacity is None:
+        high = high if high > low else low + 1.0
+        opacity = [low, 0.0, low + 0.15 * (high - low), 0.05, high, 0.8]
+    pwf.Points = [v for k in range(0, len(opacity), 2) for v in (opacity[k], opacity[k + 1], 0.5, 0.0)]
+    display.SetScalarBarVisibility(view, True)
+    return display
+
+
+def show_as_sphere_glyphs(source, view=None, port=0, color_by="Radius", resolution=24, shadows=False):
+    """Draw a RockDEM model's particles as true spheres: ParaView's 3D Glyphs
+    representation (instanced sphere meshes, lit like any surface), each scaled to its
+    particle's Radius. Correct at any zoom; for close-ups and publication pictures, while
+    Point Gaussian (show_particles) stays the default for large models
+    (Documentation/Sections.md, "Close-up rendering"). ``resolution``: facets around a
+    sphere. With ``shadows``, enable_shadows() makes the view cast shadows (the spheres on
+    each other and on any other surface). Returns the representation.
+    """
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    # The Particles block only: the end points of the Walls and Bonds blocks have a Radius
+    # of NaN (drawn as nothing by Point Gaussian), which would give glyphs of no size and a
+    # view whose bounds are not a number.
+    particles = _simple.ExtractBlock(Input=_simple.OutputPort(source, port), Selectors=["/Root/Particles"])
+    display = _simple.Show(particles, view)
+    display.SetRepresentationType("3D Glyphs")
+    display.GlyphType = "Sphere"
+    display.GlyphType.ThetaResolution = resolution
+    display.GlyphType.PhiResolution = resolution
+    display.GlyphType.Radius = 0.5
+    display.Orient = 0
+    display.Scaling = 1
+    display.ScaleMode = "Magnitude"
+    display.SelectScaleArray = "Radius"
+    display.ScaleFactor = 2.0  # the glyph sphere has diameter 1: scaled by 2 Radius
+    if color_by:
+        _simple.ColorBy(display, ("POINTS", color_by))
+        display.RescaleTransferFunctionToDataRange(True, False)
+    else:
+        display.ColorArrayName = ["POINTS", ""]
+    if shadows:
+        display.Ambient = 0.25  # the shadowed side is not black
+        enable_shadows(view)
+    return display
+
+
+def enable_shadows(view=None, direction=(-1.0, -0.4, 1.5), intensity=1.0, resolution=2048):
+    """Make a render view cast shadows (OpenGL shadow maps, VTK's vtkShadowMapPass).
+
+    One light shining along -``direction`` (world coordinates; default from above, the -X,
+    -Y side; a spot light far out whose cone covers the scene) replaces ParaView's light
+    kit; ``resolution`` is the shadow map's size in pixels (memory resolution^2 x 4
+    bytes). Surfaces and true spheres (show_as_sphere_glyphs, 3D Glyphs) cast and receive
+    shadows; Point Gaussian sprites cannot (their shader does not compile in the shadow
+    pass): show particles as spheres first. Works where the view's renderer lives in this
+    process (pvpython, pvbatch, the GUI's Python Shell with the built-in server), not
+    through a remote pvserver. Debian's ParaView has no OSPRay ray tracing (Enable Ray
+    Tracing is refused), so this is its way to shadows. Returns the light (a vtkLight).
+    """
+    import math
+    from vtkmodules.vtkRenderingCore import vtkLight
+    from vtkmodules.vtkRenderingOpenGL2 import (vtkCameraPass, vtkRenderPassCollection, vtkSequencePass,
+                                                 vtkShadowMapPass)
+    view = view or _simple.GetActiveViewOrCreate("RenderView")
+    _simple.Render(view)
+    renderer = view.GetRenderer()
+    bounds = renderer.ComputeVisiblePropBounds()
+    centre = [0.5 * (bounds[2 * k] + bounds[2 * k + 1]) for k in range(3)]
+    size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12)
+    norm = sum(c * c for c in direction) ** 0.5
+    # A spot light far enough along the direction that its cone covers the scene (VTK's
+    # shadow maps are made for positional lights).
+    distance = 4.0 * size
+    light = vtkLight()
+    light.SetLightTypeToSceneLight()
+    light.SetPositional(True)
+    light.SetFocalPoint(*centre)
+    light.SetPosition(*[centre[k] + distance * direction[k] / norm for k in range(3)])
+    light.SetConeAngle(2.0 * math.degrees(math.atan(size / distance)) + 10.0)
+    light.SetAttenuationValues(1.0, 0.0, 0.0)
+    light.SetIntensity(intensity)
+    view.UseLight = 0  # the light kit would fill the shadows in
+    renderer.AddLight(light)
+    shadows = vtkShadowMapPass()
+    shadows.GetShadowMapBakerPass().SetResolution(int(resolution))
+    passes = vtkRenderPassCollection()
+    passes.AddItem(shadows.GetShadowMapBakerPass())
+    passes.AddItem(shadows)
+    sequence = vtkSequencePass()
+    sequence.SetPasses(passes)
+    camera = vtkCameraPass()
+    camera.SetDelegatePass(sequence)
+    renderer.SetPass(camera)
+    if not _SHADOWED:
+        import atexit
+        atexit.register(_release_shadows)  # while the OpenGL contexts still exist
+    _SHADOWED.append((view, renderer, light, camera))
+    _simple.Render(view)
+    return light
+
+
+#: Views with a shadow pass: (view, renderer, light, pass), released by disable_shadows.
+_SHADOWED = []
+
+
+def disable_shadows(view=None):
+    """Undo enable_shadows(): the view's shadow pass and light go (their OpenGL resources
+    released) and ParaView's light kit comes back. Done for every view at exit too: a pass
+    still holding OpenGL resources when the windows close ends the process with an X
+    error (GLXBadContext)."""
+    view = view or _simple.GetActiveView()
+    for entry in [e for e in _SHADOWED if e[0] is view]:
+        _, renderer, light, shadow_pass = entry
+        shadow_pass.ReleaseGraphicsResources(view.GetRenderWindow())
+        renderer.SetPass(None)
+        renderer.RemoveLight(light)
+        view.UseLight = 1
+        _SHADOWED.remove(entry)
+
+
+def _release_shadows():
+    for view in list(dict.fromkeys(e[0] for e in _SHADOWED)):
+        try:
+            disable_shadows(view)
+        except Exception:  # the view may be gone already; nothing else to release
+            pass

@@ -5,6 +5,7 @@
 #include "backends/cpu/CpuBackend.h"
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
+#include "dem/ParticleStress.h"
 #include "dem/Overlaps.h"
 #include "dem/WallControl.h"
 
@@ -331,6 +332,43 @@ TestMeasurements Simulation::measurements() const
     m.suggestedStrainRate = 1e-4 / (diameter * std::sqrt(rho / reference));
   }
   return m;
+}
+
+InteractionForces Simulation::interactionForces() const
+{
+  const ContactState& im = backend_->sync();
+  const Particles& p = model_.particles;
+  const Domain& d = model_.domain;
+  InteractionForces out;
+  for (std::size_t k = 0; k < im.pairI.size(); ++k) {
+    if (im.pairNormal[k] != 0.0) {
+      const std::uint32_t i = im.pairI[k];
+      const std::uint32_t j = im.pairJ[k];
+      const Vec3 branch = minimumImage(d, p.position[i], p.position[j]);
+      const double distance = branch.norm();
+      const double overlap = p.radius[i] + p.radius[j] - distance;
+      const Vec3 armI = (p.radius[i] - 0.5 * overlap) / distance * branch; // as the CPU backend's contact loop
+      out.append(i, j, im.pairForce[k], armI, armI - branch);
+    }
+  }
+  for (std::size_t k = 0; k < im.bondI.size(); ++k) {
+    if (!model_.bonds.broken(k)) {
+      const std::uint32_t i = im.bondI[k];
+      const std::uint32_t j = im.bondJ[k];
+      const Vec3 branch = minimumImage(d, p.position[i], p.position[j]);
+      const Vec3 armI = p.radius[i] / (p.radius[i] + p.radius[j]) * branch; // as the CPU backend's bond loop
+      out.append(i, j, im.bondForce[k], armI, armI - branch);
+    }
+  }
+  for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
+    if (im.wallTouching[e]) {
+      const std::uint32_t i = im.wallSlot[e];
+      const Wall& wall = model_.walls[im.wallIndex[e]];
+      const double distance = (p.position[i][wall.axis] - wall.position) * (wall.side == 0 ? 1.0 : -1.0);
+      out.append(i, WallPartner, im.wallForce[e], -wall.normal() * distance, Vec3::Zero());
+    }
+  }
+  return out;
 }
 
 std::int64_t Simulation::stepsToNextSample() const

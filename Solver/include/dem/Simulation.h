@@ -60,6 +60,8 @@ void validate(const SolverSettings& settings);
 /// at rest on the faces of the box.
 void resetWalls(Model& model);
 
+struct InteractionForces;
+
 class Simulation {
 public:
   /// Validates the model and settings, calibrates the contact damping, chooses the
@@ -94,6 +96,10 @@ public:
   /// The press measurements now: strains, face stresses, Love-Weber stress tensor,
   /// axial/lateral/deviator stress, inertial number, suggested strain rate.
   TestMeasurements measurements() const;
+  /// The forces measurements() sums (touching contacts, intact bonds, touching wall
+  /// contacts), each with the arms from the centres to its contact point, for the
+  /// per-particle stress (dem/ParticleStress.h).
+  InteractionForces interactionForces() const;
 
 private:
   std::int64_t stepsToNextSample() const;

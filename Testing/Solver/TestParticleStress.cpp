@@ -1,0 +1,159 @@
+// Per-particle stress (Love-Weber average over each particle's volume; PHYSICS.md
+// section 4, dem/ParticleStress.h): a sphere squeezed between two platens carries the
+// analytic stress (Hertz force, PHYSICS.md section 1); the volume-weighted sum of the
+// particle stresses is the specimen's Love-Weber tensor the press reports
+// (Simulation::measurements), mid-test with contacts, bonds (some broken) and walls; the
+// stresses of a model are a function of its state: a saved-and-reloaded model gives the
+// same values bit for bit.
+#include "dem/Cement.h"
+#include "dem/LoadTest.h"
+#include "dem/ParticleStress.h"
+#include "dem/Simulation.h"
+#include "dem/StateFile.h"
+#include "Specimens.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+using namespace dem;
+using namespace dem::testing;
+
+namespace {
+
+constexpr double Pi = 3.14159265358979323846;
+
+/// sum_p V_p sigma_p (Pa m^3).
+StressTensor volumeWeightedSum(const Model& m, const std::vector<StressTensor>& s)
+{
+  StressTensor sum{ { 0, 0, 0, 0, 0, 0 } };
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double v = particleVolume(m.domain, m.particles.radius[i]);
+    for (int q = 0; q < 6; ++q) {
+      sum[q] += v * s[i][q];
+    }
+  }
+  return sum;
+}
+
+/// Specimen volume between the six active walls (m^3), as the press measures it.
+double volumeBetweenWalls(const Model& m)
+{
+  double v = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(m.walls[2 * k].active && m.walls[2 * k + 1].active);
+    v *= m.walls[2 * k + 1].position - m.walls[2 * k].position;
+  }
+  return v;
+}
+
+/// A cemented specimen in a triaxial test, sheared until some bonds have broken.
+Model shearedSpecimen()
+{
+  Model m = specimen(400, 0.012, 0.0006, 0.0009, 5);
+  consolidate(m, 2e4);
+  CementParameters c = testCement();
+  c.tensileStrength = 5e4; // weak: bonds break early in the shear
+  c.cohesion = 1e5;
+  cement(m, c);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.confiningStress = 2e4;
+  s.strainRate = 2.0;
+  s.maxStrain = 0.05;
+  s.sampleInterval = 100;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  for (int k = 0; k < 200 && (m.test.stage != TestStage::Shear || countBonds(m.bonds).broken < 5); ++k) {
+    sim.advance(200);
+  }
+  sim.advance(300);
+  return m;
+}
+
+} // namespace
+
+// A sphere of radius R pressed between two platens (overlap d at each) carries the
+// force F = 4/3 E* sqrt(R) d^1.5 (Hertz against a rigid wall, E* = E / (1 - nu^2)) at
+// two contacts whose arms are R - d: sigma_zz = 2 (R - d) F / (4/3 pi R^3), every other
+// component 0; mean stress sigma_zz / 3, von Mises sigma_zz.
+TEST(ParticleStress, SphereBetweenTwoPlatensCarriesTheAnalyticStress)
+{
+  Model m;
+  const double R = 0.002;
+  const double d = 2e-5;
+  m.domain.size = Vec3(0.01, 0.01, 2.0 * (R - d));
+  m.gravity.setZero();
+  m.material.youngsModulus = 1e8;
+  m.material.poissonsRatio = 0.25;
+  m.particles.append(Vec3(0.005, 0.005, R - d), R, 0);
+  m.nextId = 1;
+  updateMassProperties(m);
+  const std::vector<StressTensor> s = particleStresses(m);
+  ASSERT_EQ(s.size(), 1u);
+  const double Estar = m.material.youngsModulus / (1.0 - 0.25 * 0.25);
+  const double F = 4.0 / 3.0 * Estar * std::sqrt(R) * std::pow(d, 1.5);
+  const double szz = 2.0 * (R - d) * F / (4.0 / 3.0 * Pi * R * R * R);
+  EXPECT_NEAR(s[0][2], szz, 1e-12 * szz) << "sigma_zz, Pa";
+  for (int q : { 0, 1, 3, 4, 5 }) {
+    EXPECT_NEAR(s[0][q], 0.0, 1e-12 * szz) << "component " << q;
+  }
+  EXPECT_NEAR(meanStress(s[0], false), szz / 3.0, 1e-12 * szz);
+  EXPECT_NEAR(vonMisesStress(s[0], false), szz, 1e-12 * szz);
+}
+
+// Triaxial mid-shear, bonds intact and broken, six walls: sum_p V_p sigma_p = V sigma
+// (V the volume between the walls, sigma Simulation::measurements' Love-Weber tensor), for
+// the live run and for the model state alone.
+TEST(ParticleStress, VolumeWeightedSumIsTheSpecimenTensor)
+{
+  Model m = shearedSpecimen();
+  const BondCounts bonds = countBonds(m.bonds);
+  ASSERT_GT(bonds.broken, 0u) << "some bonds broke";
+  ASSERT_GT(bonds.broken, 0u);
+  ASSERT_LT(bonds.broken, bonds.installed);
+  ASSERT_EQ(m.test.stage, TestStage::Shear);
+
+  Simulation live(m);
+  live.advance(7);
+  const double V = volumeBetweenWalls(m);
+  const StressTensor specimen = live.measurements().stressTensor;
+  const StressTensor sum = volumeWeightedSum(m, particleStresses(m, live.interactionForces()));
+  const double scale = std::abs(specimen[2]);
+  ASSERT_GT(scale, 1e3) << "the specimen is loaded";
+  for (int q = 0; q < 6; ++q) {
+    EXPECT_NEAR(sum[q] / V, specimen[q], 1e-10 * scale) << "component " << q << " (live run)";
+  }
+
+  // The model state alone (the path of a model in a filter): the same identity against a
+  // Simulation built on it.
+  const std::vector<StressTensor> fromModel = particleStresses(m);
+  Model copy = m;
+  const Simulation rebuilt(copy);
+  const StressTensor specimen2 = rebuilt.measurements().stressTensor;
+  const StressTensor sum2 = volumeWeightedSum(m, fromModel);
+  for (int q = 0; q < 6; ++q) {
+    EXPECT_NEAR(sum2[q] / V, specimen2[q], 1e-10 * scale) << "component " << q << " (model state)";
+  }
+  // The two evaluations differ only in the viscous part of the contact forces (the live
+  // one used the half-step velocities): in a quasi-static test by about 1e-8 of the stress.
+  for (int q = 0; q < 6; ++q) {
+    EXPECT_NEAR(specimen2[q], specimen[q], 1e-6 * scale) << "component " << q;
+  }
+}
+
+// The stresses of a model are a function of its stored state: a state file written and
+// read back gives the same stresses bit for bit, on any number of threads.
+TEST(ParticleStress, ReloadedModelHasTheSameStressesBitForBit)
+{
+  Model m = shearedSpecimen();
+  const std::vector<StressTensor> before = particleStresses(m);
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  Model reloaded = readStateFromMemory(image.data(), image.size());
+  reloaded.solver.threads = 2;
+  reloaded.solver.parallelThreshold = 1; // the OpenMP path, two threads
+  const std::vector<StressTensor> after = particleStresses(reloaded);
+  ASSERT_EQ(before.size(), after.size());
+  EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(StressTensor)), 0);
+}
