@@ -452,11 +452,15 @@ def compress_until_failure(model, fraction=0.6, **props):
     props = dict(props)
     props.setdefault("Gravity", [0.0, 0.0, 0.0])
     press = _filter("DEMLoadTest")(Input=model, Mode="Compression", **props)
-    for t in list(press.TimestepValues)[1:]:
-        press.UpdatePipeline(t)
+    # Frame by frame, the published times read again each time: once the stage has run
+    # they are the model's times (whole steps), not the k x Frame Interval known before.
+    k = 1
+    while k < len(press.TimestepValues or []):
+        press.UpdatePipeline(list(press.TimestepValues)[k])
         peak = read_only(press, "PeakStress")
         if peak > 0 and read_only(press, "AxialStress") < fraction * peak:
-            return press, t
+            return press, list(press.TimestepValues)[k]
+        k += 1
     return press, None
 
 
