@@ -33,6 +33,7 @@ struct vtkDEMCement::vtkInternals
 
 vtkDEMCement::vtkDEMCement()
   : GapTolerance(0.05)
+  , BondRange(1.0)
   , BondRadiusMultiplier(1.0)
   , BondModulus(1.0e9)
   , BondStiffnessRatio(0.4)
@@ -40,9 +41,11 @@ vtkDEMCement::vtkDEMCement()
   , TensileStrength(10.0e6)
   , Cohesion(20.0e6)
   , FrictionAngle(30.0)
+  , MomentContribution(1.0)
   , StrengthScatter(0.0)
   , RandomSeed(1)
   , NumberOfBonds(0)
+  , BondedCoordination(0.0)
   , NumberOfBrokenBonds(0)
   , Damage(0.0)
   , BrokenInTension(0)
@@ -102,6 +105,7 @@ int vtkDEMCement::RequestData(
     {
       dem::CementParameters params;
       params.gapTolerance = this->GapTolerance;
+      params.bondRange = this->BondRange;
       params.bondRadiusMultiplier = this->BondRadiusMultiplier;
       params.bondModulus = this->BondModulus;
       params.bondStiffnessRatio = this->BondStiffnessRatio;
@@ -109,6 +113,7 @@ int vtkDEMCement::RequestData(
       params.tensileStrength = this->TensileStrength;
       params.cohesion = this->Cohesion;
       params.frictionAngle = this->FrictionAngle;
+      params.momentContribution = this->MomentContribution;
       params.strengthScatter = this->StrengthScatter;
       params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
       dem::validate(params);
@@ -121,6 +126,7 @@ int vtkDEMCement::RequestData(
       rockdem::ModelToMultiBlock(model, cemented);
       in.Output = cemented;
       this->NumberOfBonds = static_cast<vtkIdType>(counts.installed);
+      this->BondedCoordination = report.bondedCoordination;
       this->NumberOfBrokenBonds = static_cast<vtkIdType>(counts.broken);
       this->Damage = counts.damage();
       this->BrokenInTension = static_cast<vtkIdType>(counts.tension);
@@ -135,6 +141,7 @@ int vtkDEMCement::RequestData(
     catch (const std::exception& e)
     {
       this->NumberOfBonds = 0;
+      this->BondedCoordination = 0.0;
       this->NumberOfBrokenBonds = 0;
       this->Damage = 0.0;
       this->BrokenInTension = 0;
@@ -158,6 +165,7 @@ void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "GapTolerance: " << this->GapTolerance << "\n";
+  os << indent << "BondRange: " << this->BondRange << "\n";
   os << indent << "BondRadiusMultiplier: " << this->BondRadiusMultiplier << "\n";
   os << indent << "BondModulus: " << this->BondModulus << " Pa\n";
   os << indent << "BondStiffnessRatio: " << this->BondStiffnessRatio << "\n";
@@ -165,9 +173,11 @@ void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TensileStrength: " << this->TensileStrength << " Pa\n";
   os << indent << "Cohesion: " << this->Cohesion << " Pa\n";
   os << indent << "FrictionAngle: " << this->FrictionAngle << " degrees\n";
+  os << indent << "MomentContribution: " << this->MomentContribution << "\n";
   os << indent << "StrengthScatter: " << this->StrengthScatter << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "Bonds: " << this->NumberOfBonds << "\n";
+  os << indent << "BondedCoordination: " << this->BondedCoordination << "\n";
   os << indent << "BrokenBonds: " << this->NumberOfBrokenBonds << "\n";
   os << indent << "Damage: " << this->Damage << "\n";
   os << indent << "BrokenInTension: " << this->BrokenInTension << "\n";

@@ -32,9 +32,16 @@ public:
 
   ///@{
   /// Pairs whose surface gap is at most this fraction of the smaller radius are bonded
-  /// (dimensionless, >= 0; 0 = touching or overlapping pairs only).
+  /// (dimensionless, [0, 1]; 0 = touching or overlapping pairs only).
   vtkSetMacro(GapTolerance, double);
   vtkGetMacro(GapTolerance, double);
+  ///@}
+
+  ///@{
+  /// Interaction range: pairs whose centre distance is at most this x (rA + rB) are
+  /// bonded too (dimensionless, [1, 2]; 1 = Gap Tolerance alone).
+  vtkSetMacro(BondRange, double);
+  vtkGetMacro(BondRange, double);
   ///@}
 
   ///@{
@@ -80,6 +87,14 @@ public:
   ///@}
 
   ///@{
+  /// Moment contribution factor beta, [0, 1]: the share of the bond's bending and twisting
+  /// moments in its peripheral stresses (1 = Potyondy & Cundall 2004; 0 = moments are
+  /// carried but never break a bond).
+  vtkSetMacro(MomentContribution, double);
+  vtkGetMacro(MomentContribution, double);
+  ///@}
+
+  ///@{
   /// Coefficient of variation of the bond strengths, [0, 1]; 0 = every bond identical.
   vtkSetMacro(StrengthScatter, double);
   vtkGetMacro(StrengthScatter, double);
@@ -94,6 +109,7 @@ public:
   ///@{
   /// Read-only values of the last execution (0 after an error).
   vtkGetMacro(NumberOfBonds, vtkIdType);       ///< Bonds: installed
+  vtkGetMacro(BondedCoordination, double);     ///< 2 x Bonds / particles
   vtkGetMacro(NumberOfBrokenBonds, vtkIdType); ///< Broken Bonds
   vtkGetMacro(Damage, double);                 ///< broken / installed, 0-1
   vtkGetMacro(BrokenInTension, vtkIdType);
@@ -112,6 +128,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double GapTolerance;
+  double BondRange;
   double BondRadiusMultiplier;
   double BondModulus;
   double BondStiffnessRatio;
@@ -119,11 +136,13 @@ protected:
   double TensileStrength;
   double Cohesion;
   double FrictionAngle;
+  double MomentContribution;
   double StrengthScatter;
   int RandomSeed;
 
   // Read-only values are results, not parameters: setting them must not call Modified().
   vtkIdType NumberOfBonds;
+  double BondedCoordination;
   vtkIdType NumberOfBrokenBonds;
   double Damage;
   vtkIdType BrokenInTension;

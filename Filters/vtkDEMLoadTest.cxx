@@ -366,6 +366,7 @@ vtkDEMLoadTest::vtkDEMLoadTest()
   , RequestedTimestep(0.0)
   , SettlingDamping(0.7)
   , Threads(0)
+  , GPUSolver(0)
   , CriticalTimestep(0.0)
   , Timestep(0.0)
   , CurrentPorosity(1.0)
@@ -476,6 +477,11 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   return press;
 }
 
+dem::SolverDevice vtkDEMLoadTest::Device() const
+{
+  return this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU;
+}
+
 int vtkDEMLoadTest::FrameOf(double time)
 {
   const vtkInternals& in = *this->Internals;
@@ -577,8 +583,15 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
       this->LastMessageText = removed;
     }
   }
-  in.Simulation.reset(new dem::Simulation(in.Model));
+  in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
   in.Timestep = in.Simulation->timestep();
+  if (!in.Simulation->gpuFallbackReason().empty())
+  {
+    const std::string fallback =
+      "GPU Solver: running on the CPU because " + in.Simulation->gpuFallbackReason() + ".";
+    vtkWarningMacro(<< fallback);
+    this->LastMessageText = fallback;
+  }
 
   // Frames: whole steps. How far the stage runs: Number Of Frames, or the test's end.
   const bool untilDone = this->NumberOfFrames == 0;
@@ -856,7 +869,7 @@ int vtkDEMLoadTest::RequestData(
       auto it = in.Checkpoints.upper_bound(frame);
       --it; // frame 0 is always kept
       in.Model = it->second;
-      in.Simulation.reset(new dem::Simulation(in.Model));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
       in.Frame = it->first;
       in.Failed = false;
     }
@@ -868,7 +881,7 @@ int vtkDEMLoadTest::RequestData(
       if (it->first > in.Frame)
       {
         in.Model = it->second;
-        in.Simulation.reset(new dem::Simulation(in.Model));
+        in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
         in.Frame = it->first;
       }
     }
@@ -916,7 +929,7 @@ int vtkDEMLoadTest::RequestData(
         auto it = in.Checkpoints.upper_bound(in.Frame);
         --it;
         in.Model = it->second;
-        in.Simulation.reset(new dem::Simulation(in.Model));
+        in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
         in.Frame = it->first;
         break;
       }
@@ -1121,6 +1134,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Gravity: " << this->Gravity[0] << " " << this->Gravity[1] << " "
      << this->Gravity[2] << " m/s^2\n";
   os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "GPUSolver: " << this->GPUSolver << "\n";
   os << indent << "Axis: " << this->Axis << "\n";
   os << indent << "ConfiningStress: " << this->ConfiningStress << " Pa\n";
   os << indent << "StrainRate: " << this->StrainRate << " 1/s\n";

@@ -56,6 +56,7 @@ class vtkInformationVector;
 namespace dem
 {
 struct LoadTestSettings;
+enum class SolverDevice;
 }
 
 class ROCKDEMFILTERS_EXPORT vtkDEMLoadTest : public vtkMultiBlockDataSetAlgorithm
@@ -217,6 +218,15 @@ public:
   ///@}
 
   ///@{
+  /// GPU Solver: run the step on a Vulkan device (off by default). Without a usable device
+  /// (no driver, no double precision, too little memory) the run falls back to the CPU
+  /// with a warning; Solver Path says which path ran. The same bits on either path.
+  vtkSetMacro(GPUSolver, vtkTypeBool);
+  vtkGetMacro(GPUSolver, vtkTypeBool);
+  vtkBooleanMacro(GPUSolver, vtkTypeBool);
+  ///@}
+
+  ///@{
   /// Read-only values of the last update.
   vtkGetMacro(CriticalTimestep, double);   ///< s
   vtkGetMacro(Timestep, double);           ///< s, the step in use
@@ -227,7 +237,7 @@ public:
   vtkGetMacro(ModelTime, double);          ///< s, the model clock
   vtkGetMacro(CurrentFrame, int);
   const char* GetStatus() const { return this->StatusText.c_str(); } ///< last status line (or error)
-  const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial"
+  const char* GetSolverPath() const { return this->SolverPathText.c_str(); } ///< e.g. "CPU serial (...)", "GPU Vulkan: <device>"
   /// The last warning or report (a failed checkpoint or History File, removed escaped
   /// grains, an overridden timestep); empty when none.
   const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
@@ -303,6 +313,7 @@ protected:
   double SettlingDamping;
   double Gravity[3];
   int Threads;
+  vtkTypeBool GPUSolver;
   int Axis = 2;
   double ConfiningStress = 1e6;
   double StrainRate = 0.1;
@@ -360,6 +371,8 @@ private:
   int FrameOf(double time);
   /// The press settings of this stage's properties (Mode, Axis, Confining Stress, ...).
   dem::LoadTestSettings PressSettings() const;
+  /// The device GPU Solver asks for.
+  dem::SolverDevice Device() const;
   /// The published frames, 0 .. LastFrame(); -1: nothing to publish (invalid settings).
   int LastFrame();
   /// Builds the cache from the input (the stage starts).

@@ -464,6 +464,7 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
   cd->AddArray(ScalarArray("TensileStrength", b.tensileStrength));
   cd->AddArray(ScalarArray("Cohesion", b.cohesion));
   cd->AddArray(ScalarArray("FrictionAngle", b.frictionAngle));
+  cd->AddArray(ScalarArray("MomentContribution", b.momentContribution));
   cd->AddArray(ScalarArray("NormalForce", b.normalForce));
   cd->AddArray(VectorArray("ShearForce", b.shearForce));
   cd->AddArray(ScalarArray("TwistingMoment", b.twistingMoment));
@@ -720,6 +721,14 @@ void BondsFromPolyData(vtkMultiBlockDataSet* input, dem::Model& model)
   scalars("TensileStrength", b.tensileStrength);
   scalars("Cohesion", b.cohesion);
   scalars("FrictionAngle", b.frictionAngle);
+  if (cd->GetArray("MomentContribution"))
+  {
+    scalars("MomentContribution", b.momentContribution);
+  }
+  else
+  {
+    b.momentContribution.assign(static_cast<std::size_t>(n), 1.0); // made before the factor
+  }
   scalars("NormalForce", b.normalForce);
   vectors("ShearForce", b.shearForce);
   scalars("TwistingMoment", b.twistingMoment);

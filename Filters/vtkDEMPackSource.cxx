@@ -16,16 +16,24 @@ vtkStandardNewMacro(vtkDEMPackSource);
 
 namespace
 {
-/// Everything that shapes the pack (not the material): a change rebuilds it.
-std::vector<double> PackSignature(const dem::PackParameters& p, const dem::Domain& d)
+/// Everything that shapes the pack: a change rebuilds it. The material shapes it only
+/// through Compact Elements (it runs the solver), so it counts once that command is used.
+std::vector<double> PackSignature(const dem::PackParameters& p, const dem::Domain& d,
+  const dem::CompactParameters& c, const dem::Material& m, bool compacting)
 {
   const dem::FineZone& f = p.fineZone;
-  return { static_cast<double>(p.initialElements), p.minimumSize, p.maximumSize,
-    p.targetPorosity, static_cast<double>(p.randomSeed), f.enabled ? 1.0 : 0.0, f.origin.x(),
-    f.origin.y(), f.origin.z(), f.size.x(), f.size.y(), f.size.z(), f.minimumSize, f.maximumSize,
-    d.origin.x(), d.origin.y(), d.origin.z(), d.size.x(), d.size.y(), d.size.z(),
+  std::vector<double> signature = { static_cast<double>(p.initialElements), p.minimumSize,
+    p.maximumSize, p.targetPorosity, static_cast<double>(p.randomSeed), f.enabled ? 1.0 : 0.0,
+    f.origin.x(), f.origin.y(), f.origin.z(), f.size.x(), f.size.y(), f.size.z(), f.minimumSize,
+    f.maximumSize, d.origin.x(), d.origin.y(), d.origin.z(), d.size.x(), d.size.y(), d.size.z(),
     d.periodic[0] ? 1.0 : 0.0, d.periodic[1] ? 1.0 : 0.0, d.periodic[2] ? 1.0 : 0.0,
     d.section2D ? 1.0 : 0.0 };
+  if (compacting)
+  {
+    signature.insert(signature.end(), { c.stressCeiling, m.density, m.youngsModulus,
+      m.poissonsRatio, m.restitution });
+  }
+  return signature;
 }
 }
 
@@ -46,6 +54,9 @@ vtkDEMPackSource::vtkDEMPackSource()
   , FineZone(0)
   , FineZoneMinimumSize(0.001)
   , FineZoneMaximumSize(0.002)
+  , MaximumLockedInStress(0.0)
+  , LockedInStress(0.0)
+  , LargestOverlap(0.0)
   , Internals(new vtkInternals)
 {
   for (int k = 0; k < 3; ++k)
@@ -69,6 +80,12 @@ void vtkDEMPackSource::AddElements()
 void vtkDEMPackSource::GrowElements()
 {
   this->Commands.push_back('G');
+  this->Modified();
+}
+
+void vtkDEMPackSource::CompactElements()
+{
+  this->Commands.push_back('C');
   this->Modified();
 }
 
@@ -122,15 +139,22 @@ int vtkDEMPackSource::RequestData(
     params.fineZone.minimumSize = this->FineZoneMinimumSize;
     params.fineZone.maximumSize = this->FineZoneMaximumSize;
     dem::validate(params, configured.domain);
-    const std::size_t bad = this->Commands.find_first_not_of("AG");
+    const std::size_t bad = this->Commands.find_first_not_of("AGC");
     if (bad != std::string::npos)
     {
       throw dem::InputError("Commands = '" + this->Commands + "' has '" +
         this->Commands.substr(bad, 1) + "' at position " + std::to_string(bad + 1) +
-        ": the recorded commands are 'A' (Add Elements) and 'G' (Grow Elements).");
+        ": the recorded commands are 'A' (Add Elements), 'G' (Grow Elements) and "
+        "'C' (Compact Elements).");
     }
+    dem::CompactParameters compact;
+    compact.targetPorosity = this->TargetPorosity;
+    compact.stressCeiling = this->MaximumLockedInStress;
+    dem::validate(compact);
 
-    const std::vector<double> signature = PackSignature(params, configured.domain);
+    const bool compacting = this->Commands.find('C') != std::string::npos;
+    const std::vector<double> signature =
+      PackSignature(params, configured.domain, compact, configured.material, compacting);
     const bool reusable = cache.Valid && cache.Signature == signature &&
       this->Commands.compare(0, cache.AppliedCommands.size(), cache.AppliedCommands) == 0;
     if (!reusable)
@@ -141,6 +165,8 @@ int vtkDEMPackSource::RequestData(
       this->ReportInfo("built pack: " + built.summary());
       cache.AppliedCommands.clear();
       cache.Signature = signature;
+      this->LockedInStress = 0.0;
+      this->LargestOverlap = 0.0;
     }
     else
     {
@@ -155,9 +181,16 @@ int vtkDEMPackSource::RequestData(
       {
         this->ReportInfo(dem::addElements(cache.Model, params).summary());
       }
-      else
+      else if (this->Commands[c] == 'G')
       {
         this->ReportInfo(dem::growElements(cache.Model).summary());
+      }
+      else
+      {
+        const dem::CompactReport compacted = dem::compactElements(cache.Model, compact);
+        this->LockedInStress = compacted.lockedInStress;
+        this->LargestOverlap = compacted.largestOverlap;
+        this->ReportInfo(compacted.summary());
       }
       cache.AppliedCommands.push_back(this->Commands[c]);
     }
@@ -168,6 +201,8 @@ int vtkDEMPackSource::RequestData(
   catch (const std::exception& e)
   {
     cache.Valid = false;
+    this->LockedInStress = 0.0;
+    this->LargestOverlap = 0.0;
     this->ReportFailure(e.what(), outputVector);
     return 0;
   }
@@ -188,5 +223,8 @@ void vtkDEMPackSource::PrintSelf(ostream& os, vtkIndent indent)
      << this->FineZoneDimensions[1] << " " << this->FineZoneDimensions[2] << " m\n";
   os << indent << "FineZoneMinimumSize: " << this->FineZoneMinimumSize << " m\n";
   os << indent << "FineZoneMaximumSize: " << this->FineZoneMaximumSize << " m\n";
+  os << indent << "MaximumLockedInStress: " << this->MaximumLockedInStress << " Pa\n";
+  os << indent << "LockedInStress: " << this->LockedInStress << " Pa\n";
+  os << indent << "LargestOverlap: " << this->LargestOverlap << "\n";
   os << indent << "Commands: " << this->Commands << "\n";
 }

@@ -6,12 +6,13 @@
  * and "Building the particle pack". Places Initial Elements particles with radii drawn
  * uniformly between Minimum Size and Maximum Size (m), rejecting overlaps; an optional
  * fine zone (a box inside the model) draws radii from a finer range. The commands
- * AddElements (insert until Target Porosity or saturation) and GrowElements (expand
- * each particle into the gap to its nearest neighbour or wall) densify the pack;
- * ResetPack discards the commands and rebuilds from scratch.
+ * AddElements (insert until Target Porosity or saturation), GrowElements (expand
+ * each particle into the gap to its nearest neighbour or wall) and CompactElements
+ * (radius expansion with relaxation to Target Porosity, dem::compactElements) densify
+ * the pack; ResetPack discards the commands and rebuilds from scratch.
  *
  * The output is a pure function of the parameters and of the sequence of commands
- * pressed since the last reset (Commands, e.g. "AGAG"): a parameter change rebuilds the
+ * pressed since the last reset (Commands, e.g. "AGC"): a parameter change rebuilds the
  * pack from its seed and replays the commands, so the same inputs always give the same
  * pack. The sequence is recorded in the proxy (vtkSMDEMPackSourceProxy) so that a saved
  * state rebuilds the same pack.
@@ -75,16 +76,32 @@ public:
   void AddElements();
   /// Command: expand each particle into the gap to its nearest neighbour or wall.
   void GrowElements();
-  /// Command: forget Add/Grow commands and rebuild the pack from Initial Elements.
+  /// Command: radius expansion with relaxation to Target Porosity (or, when the pack jams
+  /// first, to the largest density whose locked-in stress stays within
+  /// MaximumLockedInStress).
+  void CompactElements();
+  /// Command: forget Add/Grow/Compact commands and rebuild the pack from Initial Elements.
   void ResetPack();
+
+  ///@{
+  /// Ceiling on the isotropic stress Compact Elements may lock into the pack, Pa (>= 0);
+  /// 0 = 2e-6 x Young's Modulus.
+  vtkSetMacro(MaximumLockedInStress, double);
+  vtkGetMacro(MaximumLockedInStress, double);
+  ///@}
+
+  /// Read-only, from the last Compact Elements: the locked-in isotropic stress (Pa) and
+  /// the largest overlap (over the smaller radius); 0 before any compaction.
+  vtkGetMacro(LockedInStress, double);
+  vtkGetMacro(LargestOverlap, double);
 
   /// Number of Add/Grow commands applied since the last reset.
   int GetNumberOfCommands() const { return static_cast<int>(this->Commands.size()); }
 
   ///@{
   /// The commands pressed since the last reset, in order: 'A' Add Elements, 'G' Grow
-  /// Elements (e.g. "AGAG"). Setting it replays exactly those presses on a fresh pack,
-  /// which is how a saved state (.pvsm) rebuilds the same pack; any other character is
+  /// Elements, 'C' Compact Elements (e.g. "AGC"). Setting it replays exactly those
+  /// presses on a fresh pack, which is how a saved state (.pvsm) rebuilds the same pack; any other character is
   /// an error (reported when the pack is built).
   void SetCommands(const char* commands);
   const char* GetCommands() const { return this->Commands.c_str(); }
@@ -106,8 +123,12 @@ protected:
   double FineZoneDimensions[3];
   double FineZoneMinimumSize;
   double FineZoneMaximumSize;
+  double MaximumLockedInStress;
+  // Results, not parameters: setting them must not call Modified().
+  double LockedInStress;
+  double LargestOverlap;
 
-  /// Commands pressed since the last reset: 'A' (add) or 'G' (grow).
+  /// Commands pressed since the last reset: 'A' (add), 'G' (grow) or 'C' (compact).
   std::string Commands;
 
 private:

@@ -287,7 +287,7 @@ def _filter(name):
     return _simple._create_func(name, servermanager.filters)
 
 
-def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
+def run_test(model_source, mode, stop_when_done=True, progress=None, stop_below=None, **props):
     """Create a DEM Load Test on model_source, run it, and return (proxy, history dict).
 
     mode: 'Off', 'Compression', 'Tension', 'Triaxial' or 'Isotropic'. props are DEM Load
@@ -300,8 +300,10 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
     The test is run to the end of its run (its last frame, or with NumberOfFrames 0 the
     frame where it finishes); with stop_when_done (default) it is advanced frame by frame
     and stops at the first frame where Stage is 'done'. progress, when given, is called with
-    (frame, proxy) after each frame. The History (port 1) is fetched into a dict of
-    numpy arrays.
+    (frame, proxy) after each frame. With stop_below (a fraction, e.g. 0.5) it also stops
+    at the first frame where the magnitude of Axial Stress has fallen below stop_below x
+    the magnitude of Peak Stress: the specimen has failed, and the rest of Max Strain
+    need not be run. The History (port 1) is fetched into a dict of numpy arrays.
     """
     props = dict(props)
     if mode != "Off":
@@ -326,6 +328,9 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, **props):
             if progress:
                 progress(k, test)
             if read_only(test, "Stage") == "done":
+                break
+            if stop_below is not None and abs(read_only(test, "AxialStress")) < \
+                    stop_below * abs(read_only(test, "PeakStress")):
                 break
             k += 1
     else:

@@ -2,10 +2,14 @@
 
     xvfb-run -a pvbatch examples/main_job.py [--elements N] [--output DIR]
 
-pack (Add/Grow) -> settle under gravity (Mode Off) -> isotropic consolidation (densify)
--> cement (DEM Cement) -> relax (Mode Off, no gravity) -> unconfined compression (Mode
-Compression, Axis Z) -> fracture discs (DEM Fractures To DFN). Prints the porosity, UCS (Peak Stress), Young's modulus, Poisson's
-ratio, broken bonds and the timing of each stage. See Documentation/Workflow.md.
+pack (placed loose, then Compact Elements: radius expansion with relaxation to the Target
+Porosity) -> cement over an interaction range (DEM Cement, Bond Range) -> relax (Mode Off,
+no gravity) -> unconfined compression (Mode Compression, Axis Z) and, on a twin of the
+same cemented specimen, direct tension (Mode Tension) -> fracture discs (DEM Fractures To
+DFN, default settings). Prints the porosity, the bonded coordination, UCS (Peak Stress),
+Young's modulus, Poisson's ratio, the direct tensile strength, UCS / tensile strength, the
+DFN (discs, largest radius, share of the broken bonds in discs) and the timing of each
+stage. See Documentation/Workflow.md and Documentation/Rock.md.
 
 The plugin is taken from $ROCKDEM_PLUGIN, or from the default build tree. Writes, in DIR:
 pack.png (the pack as spheres coloured by radius, with the domain box), pack_summary.csv
@@ -28,17 +32,21 @@ import time
 
 from paraview.simple import *  # noqa: F401,F403
 
+ELEMENTS = 5000        # default specimen: 5,000 grains, 13 mean diameters across
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE_DIR = os.path.dirname(HERE)
 
 
-# Material and test settings (Documentation/Workflow.md says why).
+# Material and test settings (Documentation/Workflow.md and Rock.md say why).
 MODULUS = 1e8          # Pa: grain Young's modulus and Bond Modulus (soft: a long timestep)
-TENSILE = 5e5          # Pa: bond tensile strength
-COHESION = 1e6         # Pa: bond cohesion
-CONFINING = 1e4        # Pa: isotropic consolidation before cementing (low: released at relax)
-RATE_FACTOR = 16.0     # x the Suggested Strain Rate (Press.md: E within 0.3 % at 16x)
-MAX_STRAIN = 0.025     # past the peak (about 1.5 %)
+TARGET_POROSITY = 0.37  # Compact Elements' target (a walled specimen this small jams near 0.39)
+BOND_RANGE = 1.4       # x (rA + rB): bonded coordination about 11 (Scholtes & Donze 2013)
+MOMENT_CONTRIBUTION = 1.0  # beta: the full bond moments in the failure stresses (Potyondy & Cundall)
+TENSILE = 3e5          # Pa: bond tensile strength (Rock.md: the specimen fails near 2.3 % strain)
+COHESION = 6e5         # Pa: bond cohesion
+STRAIN_PER_STEP = 1e-6  # platen strain per timestep (sets the strain rate; Rock.md)
+MAX_STRAIN = 0.03      # compression: past the peak (about 2.3 %) and its fall to 70 %
+TENSION_MAX_STRAIN = 0.005  # direct tension: the peak is near 0.16 %; stops once fallen to half
 
 
 def plugin_path():
@@ -71,9 +79,9 @@ def save_state(path, view, chart, t_end):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--elements", type=int, default=16000,
-                        help="Initial Elements of the default specimen (count); below 16000 the "
-                             "box is shrunk in proportion so the grains stay 0.68-1.36 mm")
+    parser.add_argument("--elements", type=int, default=ELEMENTS,
+                        help="Initial Elements of the default specimen (count); the box is "
+                             "scaled with the count so the grains stay 1-2 mm after compaction")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results"),
                         help="folder for the picture and the summary")
     args = parser.parse_args()
@@ -82,10 +90,11 @@ def main():
     LoadPlugin(plugin_path(), remote=False, ns=globals())
     import rockdem
 
-    # Default laboratory specimen: a 50 x 50 x 100 mm box of 0.68-1.36 mm radius grains;
-    # Add and Grow fill it with about 20k (16,000 placed, then Add/Grow twice).
-    # Fewer elements (the smoke test's 800) shrink the box by (N / 16000)^(1/3).
-    scale = min(1.0, (args.elements / 16000.0) ** (1.0 / 3.0))
+    # Default laboratory specimen: a W x W x 2W box (W = 50 mm for 10,000 grains, scaled
+    # by (N / 10000)^(1/3): 39.7 mm for the default 5,000). The grains are placed loose
+    # (radii 0.78-1.56 mm, porosity about 0.70) and Compact Elements grows them (to about
+    # 1-2 mm) until the Target Porosity or the Maximum Locked-In Stress.
+    scale = (args.elements / 10000.0) ** (1.0 / 3.0)
     size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
     timings = []
     clock = [time.time()]
@@ -98,8 +107,8 @@ def main():
 
     # Soft grains (E 1e8 Pa) keep the timestep long; see Documentation/Workflow.md.
     pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
-                         InitialElements=args.elements, MinimumSize=0.00068, MaximumSize=0.00136,
-                         TargetPorosity=0.35, RandomSeed=1,
+                         InitialElements=args.elements, MinimumSize=0.00078, MaximumSize=0.00156,
+                         TargetPorosity=TARGET_POROSITY, RandomSeed=1,
                          Density=2650.0, YoungsModulus=MODULUS, PoissonsRatio=0.25)
     rows = []
 
@@ -114,14 +123,11 @@ def main():
 
     if record("built") == 0:
         sys.exit("the pack could not be built: " + rockdem.read_only(pack, "LastMessage"))
-    pack.InvokeCommand("AddElements")
-    record("add elements")
-    pack.InvokeCommand("GrowElements")
-    record("grow elements")
-    pack.InvokeCommand("AddElements")
-    record("add elements")
-    pack.InvokeCommand("GrowElements")
-    record("grow elements")
+    pack.InvokeCommand("CompactElements")
+    record("compact")
+    print("Compact Elements: Locked-In Stress %.4g Pa, Largest Overlap %.3f %% of the smaller radius"
+          % (rockdem.read_only(pack, "LockedInStress"), 100.0 * rockdem.read_only(pack, "LargestOverlap")),
+          flush=True)
 
     lap("pack")
     summary = os.path.join(args.output, "pack_summary.csv")
@@ -162,55 +168,38 @@ def main():
 
 
 def test_workflow(args, pack, rockdem, lap, timings, view):
-    """Settle, consolidate, cement, relax, compress; write the history, chart, picture."""
-    from paraview import servermanager
+    """Cement, relax, compress (and pull a twin); write the history, chart, pictures."""
     safety = 0.3
-    # 1. settle under gravity (Mode Off): the grains drop onto the floor and each other.
-    # Every stepping stage keeps its end in a checkpoint (.rdem): main_job.pvsm reopens the
-    # whole pipeline from them without computing the run again (Documentation/StateFile.md).
-    settle = DEMLoadTest(Input=pack, FrameInterval=0.002, NumberOfFrames=5, TimestepSafety=safety,
-                         CheckpointFile=checkpoint(args, "settle"))
-    settle.UpdatePipeline(settle.TimestepValues[-1])
-    print("settled:      porosity %.4f, contacts %d, %s" % (
-        rockdem.read_only(settle, "CurrentPorosity"), rockdem.read_only(settle, "NumberOfContacts"),
-        rockdem.read_only(settle, "SolverPath")), flush=True)
-    lap("settle")
-    # 2. isotropic consolidation: the random pack is loose (porosity ~0.6); the servo walls
-    # squeeze it to CONFINING so the cement finds a dense contact network.
-    consolidate = DEMLoadTest(Input=settle, Gravity=[0, 0, 0], Mode="Isotropic", ConfiningStress=CONFINING,
-                              FrameInterval=0.002, NumberOfFrames=40, TimestepSafety=safety,
-                              SampleInterval=200, CheckpointFile=checkpoint(args, "consolidate"))
-    for t in list(consolidate.TimestepValues)[1:]:
-        consolidate.UpdatePipeline(t)
-        if rockdem.read_only(consolidate, "Stage") == "done":
-            break
-    suggested = rockdem.read_only(consolidate, "SuggestedStrainRate")
-    print("consolidated: stage %s at t = %.4g s, mean stress %.4g Pa, Suggested Strain Rate %.3g 1/s"
-          % (rockdem.read_only(consolidate, "Stage"), t, rockdem.read_only(consolidate, "AxialStress"), suggested),
-          flush=True)
-    lap("consolidate")
-    # 3. cement: parallel bonds between touching / nearly touching grains.
-    cement = DEMCement(Input=consolidate, BondModulus=MODULUS, TensileStrength=TENSILE, Cohesion=COHESION,
-                       StrengthScatter=0.2)
+    porosity = rockdem.read_only(pack, "CurrentPorosity")
+    # 1. cement: parallel bonds between every pair within the Bond Range (Cement.md).
+    cement = DEMCement(Input=pack, BondModulus=MODULUS, TensileStrength=TENSILE, Cohesion=COHESION,
+                       BondRange=BOND_RANGE, MomentContribution=MOMENT_CONTRIBUTION, StrengthScatter=0.2)
     cement.UpdatePipeline()
     bonds = rockdem.read_only(cement, "Bonds")
+    coordination = rockdem.read_only(cement, "BondedCoordination")
     print("cemented:     %s" % rockdem.read_only(cement, "LastMessage"), flush=True)
-    # 4. relax: walls back at the box, no gravity, so the stress locked in at cementing
-    # is released before the test (Press.md).
-    relax = DEMLoadTest(Input=cement, Gravity=[0, 0, 0], FrameInterval=0.001, NumberOfFrames=2,
+    print("Bonded Coordination: %.2f (%d bonds, Bond Range %g)" % (coordination, bonds, BOND_RANGE), flush=True)
+    # 2. relax: walls at the box, no gravity: the stress Compact Elements locked in is
+    # released before the tests (Press.md), and the timestep of the cemented model is known.
+    # Every stepping stage keeps its end in a checkpoint (.rdem): main_job.pvsm reopens the
+    # whole pipeline from them without computing the run again (Documentation/StateFile.md).
+    relax = DEMLoadTest(Input=cement, Gravity=[0, 0, 0], FrameInterval=2e-4, NumberOfFrames=1,
                         TimestepSafety=safety, CheckpointFile=checkpoint(args, "relax"))
     relax.UpdatePipeline(relax.TimestepValues[-1])
-    print("relaxed:      broken bonds %d of %d" % (rockdem.read_only(relax, "BrokenBonds"), bonds), flush=True)
+    timestep = rockdem.read_only(relax, "Timestep")
+    print("relaxed:      broken bonds %d of %d; timestep %.4g s" % (
+        rockdem.read_only(relax, "BrokenBonds"), bonds, timestep), flush=True)
     lap("cement + relax")
-    # 5. unconfined compression along Z at RATE_FACTOR x the Suggested Strain Rate.
-    rate = RATE_FACTOR * suggested
-    frames = 20 if args.elements >= 4000 else 10
+    # 3. unconfined compression along Z at STRAIN_PER_STEP per timestep.
+    rate = STRAIN_PER_STEP / timestep
+    frames = 30 if args.elements >= 4000 else 10
     history_file = os.path.join(args.output, "history.csv")
 
     def progress(k, lt):
-        print("compression frame %2d: axial strain %.4f, axial stress %.4g Pa, peak %.4g Pa, broken %d"
-              % (k, rockdem.read_only(lt, "AxialStrain"), rockdem.read_only(lt, "AxialStress"),
-                 rockdem.read_only(lt, "PeakStress"), rockdem.read_only(lt, "BrokenBonds")), flush=True)
+        print("%s frame %2d: axial strain %.5f, axial stress %.4g Pa, peak %.4g Pa, broken %d"
+              % (str(lt.Mode).strip("'"), k, rockdem.read_only(lt, "AxialStrain"),
+                 rockdem.read_only(lt, "AxialStress"), rockdem.read_only(lt, "PeakStress"),
+                 rockdem.read_only(lt, "BrokenBonds")), flush=True)
 
     duration = 1.02 * MAX_STRAIN / rate
     result = rockdem.ucs_test(relax, StrainRate=rate, MaxStrain=MAX_STRAIN, TimestepSafety=safety,
@@ -219,6 +208,14 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
                               CheckpointFile=checkpoint(args, "specimen"))
     press = result["proxy"]
     lap("compression")
+    # 4. direct tension of a twin: the same cemented, relaxed specimen pulled along Z.
+    tduration = 1.02 * TENSION_MAX_STRAIN / rate
+    tension = rockdem.tension_test(relax, StrainRate=rate, MaxStrain=TENSION_MAX_STRAIN, TimestepSafety=safety,
+                                   FrameInterval=tduration / 20, NumberOfFrames=20, SampleInterval=20,
+                                   progress=progress, stop_below=0.5,
+                                   CheckpointFile=checkpoint(args, "tension"))
+    sigma_t = tension["tensile_strength"]
+    lap("tension")
     # The tested specimen as a state file (Documentation/StateFile.md): the compression's
     # checkpoint, the exact model at the end of the test (DEM State Reader reopens it), its
     # history beside it.
@@ -227,10 +224,13 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     print("state file: %s (%.1f MB)" % (state_file, os.path.getsize(state_file) / 1e6), flush=True)
     ucs, e_mod, nu = result["ucs"], result["E"], result["nu"]
     broken = result["broken_bonds"]
+    ratio = rockdem.compressive_to_tensile_ratio(ucs, sigma_t) if sigma_t > 0 else float("nan")
+    print("Porosity: %.4f; Bonded Coordination: %.2f" % (porosity, coordination))
     print("UCS (Peak Stress): %.4g Pa; Young's modulus: %.4g Pa; Poisson's ratio: %.3f; "
-          "broken bonds: %d of %d (%d tension, %d shear); strain rate %.3g 1/s (%g x suggested)"
+          "broken bonds: %d of %d (%d tension, %d shear); strain rate %.4g 1/s (%g per step)"
           % (ucs, e_mod, nu, broken, bonds, rockdem.read_only(press, "BrokenInTension"),
-             rockdem.read_only(press, "BrokenInShear"), rate, RATE_FACTOR), flush=True)
+             rockdem.read_only(press, "BrokenInShear"), rate, STRAIN_PER_STEP), flush=True)
+    print("Direct tensile strength (twin): %.4g Pa; UCS / tensile strength: %.2f" % (sigma_t, ratio), flush=True)
 
     # Stress-strain chart (ParaView's DEM Test chart).
     chart = rockdem.show_test_chart(press)
@@ -258,28 +258,21 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     print("broken specimen picture: %s" % broken_png)
     lap("pictures")
 
-    # 6. The fracture network (DEM Fractures To DFN, Documentation/Fractures.md), taken at
-    # the first frame past the peak: by the end of the test the specimen is crushed into
-    # one connected damage zone. History times are model time; frames count from the
-    # test's start.
+    # 5. The fracture network (DEM Fractures To DFN at its default settings,
+    # Documentation/Fractures.md), taken at the first frame where the stress has fallen
+    # to 70 % of the peak (the last frame if it never does). History times are model
+    # time; frames count from the test's start.
     h = result["history"]
     stress, times = h["Axial Stress (Pa)"], h["Time (s)"]
     ipeak = int(stress.argmax())
-    after = [i for i in range(ipeak, len(stress)) if stress[i] < 0.95 * stress[ipeak]]
+    after = [i for i in range(ipeak, len(stress)) if stress[i] < 0.7 * stress[ipeak]]
     frame_times = list(press.TimestepValues)
     t_dfn = frame_times[0] + (times[after[0]] if after else times[-1]) - times[0]
     t_dfn = min([t for t in frame_times if t >= t_dfn - 1e-12] or [frame_times[-1]])
     dfn = DEMFracturesToDFN(Input=press)
     dfn.UpdatePipeline(t_dfn)
-    print("DFN at t = %.4g s: %s" % (t_dfn, rockdem.read_only(dfn, "LastMessage")), flush=True)
-    if rockdem.read_only(dfn, "DiscsEmitted") == 0:
-        # The damage zones at the two rigid platens join into a few large non-planar
-        # clusters at the default distance (two mean diameters); one mean diameter keeps the
-        # fractures apart (Documentation/Fractures.md, Workflow.md).
-        dfn.ClusterDistance = 0.5 * rockdem.read_only(dfn, "UsedClusterDistance")
-        dfn.UpdatePipeline(t_dfn)
-        print("DFN with Cluster Distance %.4g m (one mean diameter): %s"
-              % (dfn.ClusterDistance, rockdem.read_only(dfn, "LastMessage")), flush=True)
+    print("DFN at t = %.4g s (%s): %s" % (t_dfn, "stress fallen to 70 % of the peak" if after else "end of the test",
+                                       rockdem.read_only(dfn, "LastMessage")), flush=True)
     dfn_csv = os.path.join(args.output, "dfn.csv")
     SaveData(dfn_csv, proxy=OutputPort(dfn, 1))
     for proxy in list(GetSources().values()):
@@ -293,9 +286,20 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     dfn_png = os.path.join(args.output, "dfn.png")
     SaveScreenshot(dfn_png, view, ImageResolution=[1000, 1200])
     discs = rockdem.read_only(dfn, "DiscsEmitted")
-    print("DFN: %d discs (%d tensile, %d shear); picture: %s; table: %s" % (
-        discs, rockdem.read_only(dfn, "TensileDiscs"),
-        rockdem.read_only(dfn, "ShearDiscs"), dfn_png, dfn_csv), flush=True)
+    largest, in_discs = 0.0, 0
+    with open(dfn_csv) as f:
+        header = f.readline().strip().split(",")
+        header = [c.strip('"') for c in header]
+        for line in f:
+            row = dict(zip(header, line.strip().split(",")))
+            largest = max(largest, float(row["Radius"]))
+            in_discs += int(float(row["CrackCount"]))
+    dfn_broken = rockdem.read_only(dfn, "BrokenBonds")
+    share = in_discs / dfn_broken if dfn_broken else 0.0
+    print("DFN: %d discs (%d tensile, %d shear); largest radius %.4g m (%.0f %% of the width); "
+          "%.1f %% of the %d broken bonds in discs; picture: %s; table: %s" % (
+              discs, rockdem.read_only(dfn, "TensileDiscs"), rockdem.read_only(dfn, "ShearDiscs"),
+              largest, 100.0 * largest / pack.XDimension, 100.0 * share, dfn_broken, dfn_png, dfn_csv), flush=True)
     lap("DFN")
     # The ParaView state: File > Load State (or LoadState in pvpython) rebuilds the pipeline,
     # the 3D view beside the test chart, at the end of the test: the frame the compression's
@@ -304,10 +308,13 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
 
     results = os.path.join(args.output, "results.csv")
     with open(results, "w") as f:
-        f.write("elements,bonds,ucs_Pa,youngs_modulus_Pa,poissons_ratio,broken_bonds,strain_rate_per_s,dfn_discs,"
+        f.write("elements,porosity,bonds,bonded_coordination,ucs_Pa,youngs_modulus_Pa,poissons_ratio,"
+                "tensile_strength_Pa,ucs_over_tensile,broken_bonds,strain_rate_per_s,dfn_discs,"
+                "dfn_largest_radius_m,dfn_share_in_discs,"
                 + ",".join("time_%s_s" % n.replace(" ", "_").replace("+", "and") for n, _ in timings) + "\n")
-        f.write("%d,%d,%.6g,%.6g,%.4f,%d,%.4g,%d," % (pack.GetDataInformation().GetNumberOfPoints(),
-                                                      bonds, ucs, e_mod, nu, broken, rate, discs)
+        f.write("%d,%.6f,%d,%.4f,%.6g,%.6g,%.4f,%.6g,%.4f,%d,%.4g,%d,%.6g,%.4f," % (
+            pack.GetDataInformation().GetNumberOfPoints(), porosity, bonds, coordination, ucs, e_mod, nu,
+            sigma_t, ratio, broken, rate, discs, largest, share)
                 + ",".join("%.1f" % t for _, t in timings) + "\n")
     print("total %.1f s; results: %s" % (sum(t for _, t in timings), results))
 

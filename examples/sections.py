@@ -119,7 +119,8 @@ def main():
     voxels = rockdem.voxelize(press, number_of_voxels=24)
     voxels.UpdatePipeline(t)
     print("voxels: %s" % rockdem.read_only(voxels, "LastMessage"), flush=True)
-    SaveData(os.path.join(args.output, "voxels.vti"), proxy=voxels)
+    # Data Mode Binary: readable with Debian 12's updated expat (Sections.md, "Saving a voxel model")
+    SaveData(os.path.join(args.output, "voxels.vti"), proxy=voxels, DataMode="Binary")
     view2 = white_view([1000, 1000], t)
     rockdem.show_voxels(voxels, view2, "Damage", opacity=[0.0, 0.0, 0.1, 0.0, 0.3, 0.35, 1.0, 0.9])
     outline = Show(Outline(Input=voxels), view2)  # the grid's box

@@ -17,6 +17,7 @@ void Bonds::clear()
   tensileStrength.clear();
   cohesion.clear();
   frictionAngle.clear();
+  momentContribution.clear();
   normalForce.clear();
   shearForce.clear();
   twistingMoment.clear();
@@ -28,7 +29,7 @@ void Bonds::clear()
 }
 
 void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
-                   double sigmaC, double c, double phi)
+                   double sigmaC, double c, double phi, double beta)
 {
   idA.push_back(a);
   idB.push_back(b);
@@ -38,6 +39,7 @@ void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn,
   tensileStrength.push_back(sigmaC);
   cohesion.push_back(c);
   frictionAngle.push_back(phi);
+  momentContribution.push_back(beta);
   normalForce.push_back(0.0);
   shearForce.push_back(Vec3::Zero());
   twistingMoment.push_back(0.0);
@@ -99,12 +101,14 @@ BondSection bondSection(double bondRadius, bool section2D, double slab)
 }
 
 BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
-                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment)
+                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment,
+                          double momentContribution)
 {
   BondStresses out;
-  out.sigmaMax = normalForce / s.area + bendingMoment.norm() * bondRadius / s.inertia;
+  const double beta = momentContribution;
+  out.sigmaMax = normalForce / s.area + beta * bendingMoment.norm() * bondRadius / s.inertia;
   out.tauMax = shearForce.norm() / s.area +
-    (s.polar > 0.0 ? std::abs(twistingMoment) * bondRadius / s.polar : 0.0);
+    (s.polar > 0.0 ? beta * std::abs(twistingMoment) * bondRadius / s.polar : 0.0);
   out.compressive = -normalForce / s.area;
   return out;
 }

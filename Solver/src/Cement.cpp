@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <tuple>
 
@@ -49,9 +50,24 @@ double strengthFactor(std::uint64_t seed, std::int64_t a, std::int64_t b, int wh
   return std::exp(-0.5 * s2 + std::sqrt(s2) * gauss);
 }
 
+double bondedCoordination(std::size_t bonds, std::size_t particles)
+{
+  return particles > 0 ? 2.0 * static_cast<double>(bonds) / static_cast<double>(particles) : 0.0;
+}
+
 void validate(const CementParameters& p)
 {
-  requireNonNegative("Gap Tolerance", p.gapTolerance);
+  if (!(p.gapTolerance >= 0.0 && p.gapTolerance <= kMaxGapTolerance)) {
+    throw InputError("Gap Tolerance = " + formatValue(p.gapTolerance) +
+                     " is out of range: valid range is [0, " + formatValue(kMaxGapTolerance) +
+                     "] (a gap of at most one smaller radius; to bond over a longer range, use "
+                     "Bond Range).");
+  }
+  if (!(p.bondRange >= 1.0 && p.bondRange <= kMaxBondRange)) {
+    throw InputError("Bond Range = " + formatValue(p.bondRange) +
+                     " is out of range: valid range is [1, " + formatValue(kMaxBondRange) +
+                     "] (centre distance over rA + rB; 1 = touching pairs, 1.2-1.5 is usual).");
+  }
   if (!(p.bondRadiusMultiplier > 0.0 && p.bondRadiusMultiplier <= 1.0)) {
     throw InputError("Bond Radius Multiplier = " + formatValue(p.bondRadiusMultiplier) +
                      " is out of range: valid range is (0, 1].");
@@ -66,6 +82,7 @@ void validate(const CementParameters& p)
                      " degrees is out of range: valid range is [0, 90) degrees.");
   }
   requireInRange("Strength Scatter", p.strengthScatter, 0.0, 1.0);
+  requireInRange("Moment Contribution", p.momentContribution, 0.0, 1.0);
 }
 
 std::string CementReport::summary() const
@@ -75,6 +92,10 @@ std::string CementReport::summary() const
   if (replaced > 0) {
     s << " (replacing " << replaced << ")";
   }
+  char coordination[32];
+  std::snprintf(coordination, sizeof(coordination), "%.2f", bondedCoordination);
+  s << " between " << particles << " particles, bonded coordination " << coordination << " ("
+    << longBonds << " across a gap)";
   s << "; bond stiffness " << formatValue(bondStiffness) << " N/m^3 for the largest particles.";
   return s.str();
 }
@@ -101,17 +122,24 @@ CementReport cement(Model& model, const CementParameters& params)
   std::vector<Candidate> pairs;
   std::vector<std::size_t> keys;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    // The tolerance scales with the smaller radius, so r_i bounds the reach.
-    // (slightly widened: the search is strict, the test below is exact)
-    const double reach = params.gapTolerance * p.radius[i] * (1.0 + 1e-9) + 1e-9 * p.radius[i];
+    // The tolerance scales with the smaller radius, so r_i bounds its reach; the range
+    // reaches a gap of (range - 1)(r_i + r_j) <= (range - 1)(r_i + r_max).
+    // (slightly widened: the search is strict, the tests below are exact)
+    const double gapReach = std::max(params.gapTolerance * p.radius[i],
+                                     (params.bondRange - 1.0) * (p.radius[i] + *rmax));
+    const double reach = gapReach * (1.0 + 1e-9) + 1e-9 * p.radius[i];
     grids.neighboursWithin(p.position[i], p.radius[i], reach, i, keys);
     for (std::size_t j : keys) {
       if (j <= i) {
         continue;
       }
-      const double gap =
-        grids.separation(p.position[i], p.position[j]).norm() - p.radius[i] - p.radius[j];
-      if (gap <= params.gapTolerance * std::min(p.radius[i], p.radius[j])) {
+      const double distance = grids.separation(p.position[i], p.position[j]).norm();
+      const double gap = distance - p.radius[i] - p.radius[j];
+      const bool nearlyTouching = gap <= params.gapTolerance * std::min(p.radius[i], p.radius[j]);
+      const bool inRange =
+        params.bondRange > 1.0 && distance <= params.bondRange * (p.radius[i] + p.radius[j]);
+      if (nearlyTouching || inRange) {
+        report.longBonds += gap > 0.0 ? 1 : 0;
         const bool ordered = p.id[i] < p.id[j];
         pairs.push_back({ ordered ? p.id[i] : p.id[j], ordered ? p.id[j] : p.id[i], i, j });
       }
@@ -129,9 +157,12 @@ CementReport cement(Model& model, const CementParameters& params)
     const double ks = kn * params.bondStiffnessRatio;
     model.bonds.append(c.a, c.b, params.bondRadiusMultiplier * std::min(ri, rj), kn, ks,
       params.tensileStrength * strengthFactor(params.randomSeed, c.a, c.b, 0, params.strengthScatter),
-      params.cohesion * strengthFactor(params.randomSeed, c.a, c.b, 1, params.strengthScatter), phi);
+      params.cohesion * strengthFactor(params.randomSeed, c.a, c.b, 1, params.strengthScatter), phi,
+      params.momentContribution);
   }
   report.bonds = model.bonds.size();
+  report.particles = p.size();
+  report.bondedCoordination = bondedCoordination(report.bonds, report.particles);
   report.bondStiffness =
     params.bondNormalStiffness > 0.0 ? params.bondNormalStiffness : params.bondModulus / (2.0 * *rmax);
   return report;

@@ -1,17 +1,28 @@
 #include "dem/EmbeddedShaders.h"
 
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
 namespace dem {
 namespace shaders {
 namespace {
-const std::uint32_t kParticleVolume[] = {
-#include "particle_volume.spv.inc"
-};
+#include "shader_registry.inc"
 } // namespace
 
 SpirvModule particleVolume()
 {
-  return { kParticleVolume, sizeof(kParticleVolume) / sizeof(kParticleVolume[0]),
-           "particle_volume" };
+  return module("particle_volume");
+}
+
+SpirvModule module(const char* name)
+{
+  for (const SpirvModule& m : kModules) {
+    if (std::strcmp(m.name, name) == 0) {
+      return m;
+    }
+  }
+  throw std::out_of_range(std::string("no embedded shader named ") + name);
 }
 
 } // namespace shaders

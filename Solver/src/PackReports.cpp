@@ -46,4 +46,23 @@ std::string GrowReport::summary() const
     fixed3(porosityBefore) + " -> " + fixed3(porosityAfter) + ".";
 }
 
+std::string CompactReport::summary() const
+{
+  char overlap[32];
+  std::snprintf(overlap, sizeof(overlap), "%.3g", 100.0 * largestOverlap);
+  std::string s = "Compact Elements: porosity " + fixed3(porosityBefore) + " -> " + fixed3(porosity);
+  if (targetReached) {
+    s += " (target " + fixed3(targetPorosity) + " reached)";
+  } else if (jammed) {
+    s += " (target " + fixed3(targetPorosity) + " not reached: the pack jammed, and going further would lock in more than the Maximum Locked-In Stress " + formatValue(stressCeiling) + " Pa)";
+  } else {
+    s += " (target " + fixed3(targetPorosity) + " not reached)";
+  }
+  s += "; locked-in isotropic stress " + formatValue(lockedInStress) + " Pa (ceiling " +
+    formatValue(stressCeiling) + " Pa); largest overlap " + overlap + " % of the smaller radius; " +
+    std::to_string(particles) + " particles, " + std::to_string(stages) + " stages, " +
+    std::to_string(steps) + " steps.";
+  return s;
+}
+
 } // namespace dem

@@ -152,6 +152,11 @@ void visitModel(IO& io, Model& m)
   io.column("bonds/tensile_strength", b.tensileStrength, nb, "Pa", perBond);
   io.column("bonds/cohesion", b.cohesion, nb, "Pa", perBond);
   io.column("bonds/friction_angle", b.frictionAngle, nb, "rad", perBond);
+  if (io.has("bonds/moment_contribution")) {
+    io.column("bonds/moment_contribution", b.momentContribution, nb, "1", perBond);
+  } else {
+    b.momentContribution.assign(nb, 1.0); // files before the factor: the full moments
+  }
   io.column("bonds/normal_force", b.normalForce, nb, "N", perBond);
   io.column("bonds/shear_force", b.shearForce, nb, "N", perBond);
   io.column("bonds/twisting_moment", b.twistingMoment, nb, "N m", perBond);

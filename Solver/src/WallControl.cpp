@@ -78,17 +78,8 @@ void controlWalls(Model& model, double dt, double smallestRadius)
       const int b = (w.axis + 1) % 3;
       const int c = (w.axis + 2) % 3;
       const double area = length[b] * length[c];
-      // The servo controls the elastic push: the viscous part of the wall forces follows
-      // the wall's own speed, and feeding it back makes the servo chatter.
-      const double measured = w.elasticForce / area; // Pa, compression positive
-      double outward = -maxSpeed;                    // no contact: close in
-      if (w.contactStiffness > 0.0) {
-        // u = G (sigma - sigma_target), G = alpha A / (kn_wall Nc dt) (PHYSICS.md s.4).
-        const double gain = s.servoAlpha * area / (w.contactStiffness * dt);
-        outward = gain * (measured - s.confiningStress);
-      }
-      outward = std::max(-maxSpeed, std::min(maxSpeed, outward));
-      w.velocity = w.side == 0 ? -outward : outward;
+      w.velocity = servoWallVelocity(w.elasticForce, w.contactStiffness, area, s.confiningStress,
+                                     s.servoAlpha, dt, maxSpeed, w.side);
     } else if (platenMoving && w.axis == a && w.side == 1) {
       w.velocity = platenVelocity;
     } else {

@@ -4,6 +4,7 @@
 // porosity after each command and its wall-clock time.
 //
 //   rockdem_bench_pack [--sizes 10000,100000,1000000] [--quick] [--rounds 4]
+#include "CommaList.h"
 #include "dem/Pack.h"
 
 #include <chrono>
@@ -24,30 +25,12 @@ struct Options {
   int rounds = 4;
 };
 
-std::vector<long> parseSizes(const char* text)
-{
-  std::vector<long> sizes;
-  const std::string s(text);
-  std::size_t start = 0;
-  while (start < s.size()) {
-    const std::size_t comma = s.find(',', start);
-    const std::string item = s.substr(start, comma == std::string::npos ? std::string::npos
-                                                                      : comma - start);
-    sizes.push_back(std::atol(item.c_str()));
-    if (comma == std::string::npos) {
-      break;
-    }
-    start = comma + 1;
-  }
-  return sizes;
-}
-
 Options parse(int argc, char** argv)
 {
   Options o;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) {
-      o.sizes = parseSizes(argv[++i]);
+      o.sizes = rockdem_bench::parseList<long>(argv[++i]);
     } else if (std::strcmp(argv[i], "--quick") == 0) {
       o.quick = true;
     } else if (std::strcmp(argv[i], "--rounds") == 0 && i + 1 < argc) {

@@ -1,4 +1,5 @@
-// Solver benchmark: throughput of the CPU time-stepping solver, and speed against accuracy.
+// Solver benchmark: throughput of the time-stepping solver (CPU or GPU backend), and speed
+// against accuracy.
 //
 // Throughput (default mode). Gravity settling of N spheres with Hertz-Mindlin contacts for
 // a fixed number of steps; prints particle-steps per second with one thread and with all
@@ -12,10 +13,16 @@
 //           stays loaded for the whole run.
 // Material: density 2650 kg/m^3, E 1e8 Pa, nu 0.25, restitution 0.5, friction 0.5,
 // Settling Damping 0.7 (default), gravity 9.81 m/s^2, Timestep Safety 0.1 (default).
+//   cemented the lattice without gravity, cemented (dem::cement: a bond between every pair
+//           of touching neighbours, Benchmarks-GPU.md gives the parameters) and under
+//           unconfined compression along Z at 1/s (history row every 100 steps).
 // Only advance() is timed (pack building and the Simulation constructor are not).
+// --backend cpu,gpu runs each configuration on the CPU backend and/or the GPU (Vulkan)
+// backend; the GPU rows add the device memory per particle, per neighbour-pair slot and
+// per bond (Documentation/Benchmarks-GPU.md).
 //
-//   rockdem_bench_solver [--sizes 10000,100000,1000000] [--steps N] [--packs mono,poly,lattice]
-//                        [--threads 1,2] [--damping 0.7] [--restitution 0.5] [--sort]
+//   rockdem_bench_solver [--sizes 10000,100000,1000000] [--steps N] [--packs mono,poly,lattice,cemented]
+//                        [--backend cpu,gpu] [--threads 1,2] [--damping 0.7] [--restitution 0.5] [--sort]
 //                        [--repeat R] [--csv FILE] [--quick]
 //   rockdem_bench_solver --sweep [--csv FILE] [--sweep-particles 5000] [--safeties 0.05,0.1,...]
 //   rockdem_bench_solver --write-pack FILE --pack poly --sizes 10000
@@ -44,6 +51,9 @@
 // Any dem::InstabilityError is caught and reported in the status columns ("unstable:..."),
 // an impact that returns faster than it came is reported as "energy-gain"; the last
 // column, stable, is 0 when any of the three threw. CSV on stdout (and in --csv FILE).
+#include "CommaList.h"
+#include "dem/Cement.h"
+#include "dem/LoadTest.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
 
@@ -90,6 +100,7 @@ struct Options {
   std::vector<long> sizes{ 10000, 100000, 1000000 };
   long steps = -1; // -1: by size
   std::vector<std::string> packs{ "mono", "poly", "lattice" };
+  std::vector<std::string> backends{ "cpu" };
   std::vector<int> threads;  // empty: 1 and all cores
   double damping = 0.7;
   bool sort = false;
@@ -104,27 +115,11 @@ struct Options {
                                 0.7, 1.0, 1.5, 2.0, 3.0 };
 };
 
-template <class T>
-std::vector<T> parseList(const char* text)
-{
-  std::vector<T> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) {
-      std::stringstream is(item);
-      T value{};
-      is >> value;
-      out.push_back(value);
-    }
-  }
-  return out;
-}
-
 [[noreturn]] void usage(const char* argv0)
 {
   std::fprintf(stderr,
-    "usage: %s [--sizes N1,N2,...] [--steps N] [--packs mono,poly,lattice] [--threads 1,2]\n"
+    "usage: %s [--sizes N1,N2,...] [--steps N] [--packs mono,poly,lattice,cemented] [--backend cpu,gpu]\n"
+    "          [--threads 1,2]\n"
     "          [--damping A] [--restitution E] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
     "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
     "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--restitution E] [--sort]\n",
@@ -139,15 +134,17 @@ Options parse(int argc, char** argv)
     const std::string a = argv[i];
     const bool hasValue = i + 1 < argc;
     if (a == "--sizes" && hasValue) {
-      o.sizes = parseList<long>(argv[++i]);
+      o.sizes = rockdem_bench::parseList<long>(argv[++i]);
     } else if (a == "--steps" && hasValue) {
       o.steps = std::atol(argv[++i]);
     } else if (a == "--packs" && hasValue) {
-      o.packs = parseList<std::string>(argv[++i]);
+      o.packs = rockdem_bench::parseList<std::string>(argv[++i]);
+    } else if (a == "--backend" && hasValue) {
+      o.backends = rockdem_bench::parseList<std::string>(argv[++i]);
     } else if (a == "--pack" && hasValue) {
       o.pack = argv[++i];
     } else if (a == "--threads" && hasValue) {
-      o.threads = parseList<int>(argv[++i]);
+      o.threads = rockdem_bench::parseList<int>(argv[++i]);
     } else if (a == "--restitution" && hasValue) {
       gRestitution = std::atof(argv[++i]);
     } else if (a == "--damping" && hasValue) {
@@ -167,13 +164,18 @@ Options parse(int argc, char** argv)
     } else if (a == "--sweep-particles" && hasValue) {
       o.sweepParticles = std::atol(argv[++i]);
     } else if (a == "--safeties" && hasValue) {
-      o.safeties = parseList<double>(argv[++i]);
+      o.safeties = rockdem_bench::parseList<double>(argv[++i]);
     } else {
       usage(argv[0]);
     }
   }
   for (const std::string& p : o.packs) {
-    if (p != "mono" && p != "poly" && p != "lattice") {
+    if (p != "mono" && p != "poly" && p != "lattice" && p != "cemented") {
+      usage(argv[0]);
+    }
+  }
+  for (const std::string& b : o.backends) {
+    if (b != "cpu" && b != "gpu") {
       usage(argv[0]);
     }
   }
@@ -314,6 +316,24 @@ dem::Model makeBenchModel(const std::string& pack, long n, dem::PackReport* repo
 {
   dem::Model m;
   setMaterial(m);
+  if (pack == "cemented") {
+    // The lattice, every touching pair bonded, under unconfined compression along Z.
+    m = makeBenchModel("lattice", n);
+    m.gravity.setZero();
+    dem::CementParameters cement;
+    cement.bondModulus = kYoung;
+    cement.tensileStrength = 1e6;
+    cement.cohesion = 2e6;
+    cement.strengthScatter = 0.2;
+    dem::cement(m, cement);
+    dem::LoadTestSettings press;
+    press.mode = dem::TestMode::Compression;
+    press.strainRate = 1.0;
+    press.maxStrain = 0.5;
+    press.sampleInterval = 100;
+    dem::startLoadTest(m, press);
+    return m;
+  }
   if (pack == "lattice") {
     const double r = 0.001; // m
     const long side = std::max(1L, std::lround(std::cbrt(static_cast<double>(n))));
@@ -436,11 +456,24 @@ int runThroughput(const Options& o)
            "model_bytes_per_particle,solver_bytes_per_particle,peak_bytes_per_particle,kinetic_energy_end_J,"
            "other_processes_cores",
            false);
+  if (std::find(o.backends.begin(), o.backends.end(), "gpu") != o.backends.end()) {
+    const std::string whyNot = dem::gpuUnavailableReason();
+    if (!whyNot.empty()) {
+      // The GPU rows then show the fallback (the CPU) and its reason.
+      std::printf("GPU: no usable Vulkan device on this machine: %s\n", whyNot.c_str());
+    }
+  }
   for (long requested : o.sizes) {
     const long steps = o.steps > 0 ? o.steps : (o.quick ? 50 : defaultSteps(requested));
     for (const std::string& pack : o.packs) {
-      for (int threads : threadList) {
+     for (const std::string& backend : o.backends) {
+      const bool gpu = backend == "gpu";
+      // The GPU backend's host side (its first neighbour list) uses all cores.
+      const std::vector<int> threadsToRun = gpu ? std::vector<int>{ coreCount() } : threadList;
+      for (int threads : threadsToRun) {
         double seconds = 0.0;
+        dem::DeviceMemory device;
+        std::size_t bonds = 0;
         double rss0 = 0.0, rss1 = 0.0, rss2 = 0.0, peak = 0.0, n = 0.0;
         std::size_t contacts = 0;
         double kinetic = 0.0;
@@ -459,7 +492,7 @@ int runThroughput(const Options& o)
           model.solver.parallelThreshold = threads > 1 ? 0 : model.solver.parallelThreshold;
           n = static_cast<double>(model.particles.size());
           rss1 = residentBytes();
-          dem::Simulation sim(model);
+          dem::Simulation sim(model, gpu ? dem::SolverDevice::GPU : dem::SolverDevice::CPU);
           rss2 = residentBytes();
           resetPeakResident();
           const auto cpu0 = cpuSeconds();
@@ -476,6 +509,15 @@ int runThroughput(const Options& o)
           kinetic = sim.diagnostics().kineticEnergy;
           path = sim.path();
           timestep = sim.timestep();
+          device = sim.deviceMemory();
+          bonds = model.bonds.size();
+        }
+        // The table keeps the path short; the device and any fallback reason follow it.
+        const std::string fullPath = path;
+        if (path.rfind("GPU Vulkan", 0) == 0) {
+          path = "GPU Vulkan";
+        } else if (path.find(": GPU requested") != std::string::npos) {
+          path = path.substr(0, path.find(": GPU requested")) + " (fallback)";
         }
         const double rate = n * static_cast<double>(steps) / seconds;
         const double modelBytes = (rss1 - rss0) / n;
@@ -493,7 +535,16 @@ int runThroughput(const Options& o)
         if (report.saturated) {
           std::printf("  note: %s\n", report.summary().c_str());
         }
+        if (gpu && device.total == 0) {
+          std::printf("  %s\n", fullPath.c_str());
+        } else if (gpu) {
+          std::printf("  %s; device memory %.0f MiB: %.0f B/particle, %.0f B per pair slot (%.1f slots/particle), "
+                      "%.0f B/bond (%zu bonds)\n",
+                      fullPath.c_str(), device.total / 1048576.0, device.perParticle, device.perPair,
+                      n > 0 ? device.pairSlots / n : 0.0, device.perBond, bonds);
+        }
       }
+     }
     }
   }
   return 0;

@@ -138,6 +138,7 @@ void ExpectBondsBitwiseEqual(const dem::Bonds& a, const dem::Bonds& b)
   EXPECT_TRUE(BitwiseEqual(a.tensileStrength, b.tensileStrength));
   EXPECT_TRUE(BitwiseEqual(a.cohesion, b.cohesion));
   EXPECT_TRUE(BitwiseEqual(a.frictionAngle, b.frictionAngle));
+  EXPECT_TRUE(BitwiseEqual(a.momentContribution, b.momentContribution));
   EXPECT_TRUE(BitwiseEqual(a.normalForce, b.normalForce));
   EXPECT_TRUE(BitwiseEqual(a.shearForce, b.shearForce));
   EXPECT_TRUE(BitwiseEqual(a.twistingMoment, b.twistingMoment));

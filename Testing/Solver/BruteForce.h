@@ -2,12 +2,16 @@
 // the reference that the pack and grid tests check against. SI units (m).
 #pragma once
 
+#include "dem/Bonds.h"
 #include "dem/Model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace bruteforce {
 
@@ -83,6 +87,19 @@ inline double nearestGap(const dem::Model& model, std::size_t i)
     }
   }
   return gap;
+}
+
+/// A bonded pair by particle ids (idA < idB, as DEM Cement stores them).
+using IdPair = std::pair<std::int64_t, std::int64_t>;
+
+/// The (idA, idB) pairs of a bond set, in its order.
+inline std::vector<IdPair> bondPairs(const dem::Bonds& b)
+{
+  std::vector<IdPair> out;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    out.emplace_back(b.idA[k], b.idB[k]);
+  }
+  return out;
 }
 
 } // namespace bruteforce

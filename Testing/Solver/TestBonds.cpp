@@ -436,6 +436,50 @@ TEST(BondShear, FailureTracesMohrCoulombEnvelope)
 TEST(BondBending, LinearToFailureSpheres) { pureBending(false); }
 TEST(BondBending, LinearToFailureDiscs) { pureBending(true); } // I = 2/3 t Rb^3, no Mt
 
+// Moment contribution factor beta (PFC's moment-contribution factor): the bond carries the
+// same moment, but only beta of its peripheral stress counts. Bending to failure takes
+// 1/beta times the rotation; with beta = 0 bending never breaks it.
+TEST(BondBending, MomentContributionScalesTheMomentInTheFailureStresses)
+{
+  const double rb = 0.002;
+  const BondSection s = bondSection(rb, false, 0.0);
+  const Vec3 mb(0.0, 0.01, 0.0);
+  const double mt = 0.004;
+  for (double beta : { 0.0, 0.3, 1.0 }) {
+    const BondStresses t = bondStresses(s, rb, 2.0, Vec3(0, 3, 4), mt, mb, beta);
+    EXPECT_NEAR(t.sigmaMax, 2.0 / s.area + beta * 0.01 * rb / s.inertia, 1e-12 * (2.0 / s.area));
+    EXPECT_NEAR(t.tauMax, 5.0 / s.area + beta * mt * rb / s.polar, 1e-12 * (5.0 / s.area));
+  }
+  for (double beta : { 0.5, 0.0 }) {
+    const double Ebar = 1e9;
+    const double sigmaC = 1e6;
+    CementParameters cp = pairCement(Ebar, sigmaC, 1e9, 30.0);
+    cp.momentContribution = beta;
+    Model m = bondedPair(false, cp);
+    EXPECT_EQ(m.bonds.momentContribution[0], beta);
+    const Section sec = pairSection(false);
+    const double kn = knOf(Ebar);
+    // Full moments: failure at theta_c = sigma_c / (kn Rb); with beta at theta_c / beta.
+    const int n0 = 200;
+    const double thetaC = sigmaC / (kn * sec.Rb);
+    const double w = thetaC / (n0 * Dt) / 2.0;
+    m.particles.angularVelocity[0] = Vec3(0, w, 0);
+    m.particles.angularVelocity[1] = Vec3(0, -w, 0);
+    Simulation sim(m);
+    sim.advance(3 * n0 / 2); // 1.5 theta_c: beyond full-moment failure
+    const double expected = kn * sec.I * 2.0 * w * sim.timestep() * (3 * n0 / 2);
+    if (beta == 0.0) {
+      EXPECT_FALSE(m.bonds.broken(0)) << "bending alone never breaks a bond with beta 0";
+      EXPECT_NEAR(m.bonds.bendingMoment[0].norm(), expected, 1e-9 * expected) << "the moment is still carried";
+    } else {
+      EXPECT_FALSE(m.bonds.broken(0)) << "beta 0.5: fails at 2 theta_c, not yet";
+      sim.advance(n0);
+      EXPECT_TRUE(m.bonds.broken(0)) << "beta 0.5: failed by 2.5 theta_c";
+      EXPECT_EQ(m.bonds.failure[0], mode(BondFailure::Tension));
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // 5. Twisting (3D): Mt = -ks J theta to roundoff; shear failure when |Mt| Rb / J = c.
 

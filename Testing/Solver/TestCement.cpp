@@ -1,6 +1,8 @@
 // Cementing a pack (dem::cement, PHYSICS.md section 3): which pairs get a bond, what each
 // bond holds, the strength draw, validation, and cemented packs under the solver
 // (stability under gravity, the timestep accounting for bond stiffness).
+#include "BruteForce.h"
+
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
 #include "dem/Errors.h"
@@ -64,7 +66,8 @@ Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b)
   return s;
 }
 
-using IdPair = std::pair<std::int64_t, std::int64_t>;
+using bruteforce::IdPair;
+using bruteforce::bondPairs;
 
 /// Brute force over all pairs: gap <= tolerance x smaller radius. Pairs within a relative
 /// 1e-9 of the threshold are ambiguous under rounding and returned separately.
@@ -90,14 +93,6 @@ void bruteForcePairs(const Model& m, double tolerance, std::vector<IdPair>& bond
   std::sort(ambiguous.begin(), ambiguous.end());
 }
 
-std::vector<IdPair> bondPairs(const Bonds& b)
-{
-  std::vector<IdPair> out;
-  for (std::size_t k = 0; k < b.size(); ++k) {
-    out.emplace_back(b.idA[k], b.idB[k]);
-  }
-  return out;
-}
 
 std::size_t slotOfId(const Particles& p, std::int64_t id)
 {

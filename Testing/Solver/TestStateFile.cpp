@@ -118,6 +118,7 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_TRUE(sameBits(a.bonds.tensileStrength, b.bonds.tensileStrength));
   EXPECT_TRUE(sameBits(a.bonds.cohesion, b.bonds.cohesion));
   EXPECT_TRUE(sameBits(a.bonds.frictionAngle, b.bonds.frictionAngle));
+  EXPECT_TRUE(sameBits(a.bonds.momentContribution, b.bonds.momentContribution));
   EXPECT_EQ(std::memcmp(a.domain.origin.data(), b.domain.origin.data(), 24), 0);
   EXPECT_EQ(std::memcmp(a.domain.size.data(), b.domain.size.data(), 24), 0);
   EXPECT_EQ(a.domain.periodic, b.domain.periodic);
@@ -235,11 +236,11 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(SolverSettings), 64u) << "SolverSettings" << fix;
   EXPECT_EQ(sizeof(Wall), 80u) << "Wall" << fix;
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
-  EXPECT_EQ(sizeof(Bonds), 16 * sizeof(std::vector<double>)) << "Bonds" << fix;
+  EXPECT_EQ(sizeof(Bonds), 17 * sizeof(std::vector<double>)) << "Bonds" << fix;
   EXPECT_EQ(sizeof(LoadTestSettings), 56u) << "LoadTestSettings" << fix;
   EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1200u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1224u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
@@ -349,6 +350,22 @@ TEST(StateFile, UnknownVersionIsRejectedNamingTheSupportedOnes)
   const std::string error = memoryError(image);
   EXPECT_NE(error.find("format version 7"), std::string::npos) << error;
   EXPECT_NE(error.find("supported versions are 1"), std::string::npos) << error;
+}
+
+TEST(StateFile, BondsWithoutTheMomentContributionReadAsFullMoments)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  CementParameters c = dem::testing::testCement();
+  c.momentContribution = 0.25;
+  cement(m, c);
+  ASSERT_GT(m.bonds.size(), 0u);
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  EXPECT_EQ(readStateFromMemory(image.data(), image.size()).bonds.momentContribution,
+            std::vector<double>(m.bonds.size(), 0.25));
+  // A file written before the factor existed: the full moments (Potyondy & Cundall).
+  const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "bonds/moment_contribution", H5P_DEFAULT); });
+  EXPECT_EQ(readStateFromMemory(older.data(), older.size()).bonds.momentContribution,
+            std::vector<double>(m.bonds.size(), 1.0));
 }
 
 TEST(StateFile, InconsistentArraySizesAreRejected)

@@ -27,6 +27,15 @@ struct StabilityReport {
   double kineticEnergy = 0.0; ///< J, translational + rotational
 };
 
+/// Device memory a backend holds (none for the CPU backend, whose arrays are host memory).
+struct DeviceMemory {
+  std::uint64_t total = 0;        ///< bytes
+  double perParticle = 0.0;       ///< bytes of the per-particle arrays (and grids), per particle
+  double perBond = 0.0;           ///< bytes of the per-bond arrays, per bond
+  double perPair = 0.0;           ///< bytes per neighbour-pair slot (pairs, gather lists, history)
+  std::uint64_t pairSlots = 0;    ///< neighbour pairs the device lists hold room for now
+};
+
 class Backend {
 public:
   virtual ~Backend() = default;
@@ -45,6 +54,9 @@ public:
 
   /// Non-finite values, escaped particles and kinetic energy after the last step.
   virtual StabilityReport stability() = 0;
+
+  /// What the backend holds in device memory (zero for the CPU).
+  virtual DeviceMemory deviceMemory() const { return {}; }
 };
 
 } // namespace dem

@@ -43,6 +43,9 @@ struct Bonds {
   std::vector<double> tensileStrength; ///< Pa, sigma_c
   std::vector<double> cohesion;        ///< Pa, c
   std::vector<double> frictionAngle;   ///< rad, phi
+  /// Moment contribution factor beta in [0, 1]: the share of the bond's moments in its
+  /// peripheral stresses (PFC's moment-contribution factor; 1 = Potyondy & Cundall 2004).
+  std::vector<double> momentContribution;
   // State (forces and moments on particle A; B gets the opposite).
   std::vector<double> normalForce;     ///< N, positive in tension
   std::vector<Vec3> shearForce;        ///< N, in the bond plane
@@ -57,9 +60,10 @@ struct Bonds {
   std::size_t size() const { return idA.size(); }
   bool broken(std::size_t b) const { return failure[b] != static_cast<std::uint8_t>(BondFailure::Intact); }
   void clear();
-  /// Appends an intact bond with zero force; strengths and stiffness as given.
+  /// Appends an intact bond with zero force; strengths, stiffness and moment
+  /// contribution as given.
   void append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
-              double sigmaC, double c, double phi);
+              double sigmaC, double c, double phi, double beta = 1.0);
   /// Breaks bond k for good: records how, when (s), where (m, the contact point on the
   /// line of centres) and its orientation (unit normal from A to B), and zeroes its force
   /// and moments.
@@ -87,14 +91,17 @@ struct BondSection {
 BondSection bondSection(double bondRadius, bool section2D, double slab);
 
 /// Peripheral stresses of a bond state (PHYSICS.md s.3), Pa:
-/// sigma_max = Fn/A + |Mb| Rb / I (tension positive), tau_max = |Fs|/A + |Mt| Rb / J (3D).
+/// sigma_max = Fn/A + beta |Mb| Rb / I (tension positive), tau_max = |Fs|/A + beta |Mt| Rb / J
+/// (3D), with beta the moment contribution factor (1: the full moments, Potyondy & Cundall
+/// 2004; 0: the moments are carried but never break the bond).
 struct BondStresses {
   double sigmaMax;
   double tauMax;
   double compressive; ///< sigma = -Fn / A (compression positive)
 };
 BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
-                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment);
+                          const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment,
+                          double momentContribution = 1.0);
 
 /// The failure a stress state causes (Intact if none): tension if sigma_max >= sigma_c,
 /// else shear if tau_max >= c + sigma tan(phi).

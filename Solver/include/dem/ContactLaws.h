@@ -1,6 +1,10 @@
 // RockDEM engine: contact force laws (PHYSICS.md section 1).
 //
 // One function per force law, named as in the references. SI units: m, kg, s, N, Pa.
+// The laws the time step uses (pairProperties, wallProperties, contactConstants,
+// normalStiffness, the responses, rotateIntoPlane, mindlinCoulombForce, rollingTorque,
+// cundallDamping) have a GLSL twin in shaders/include/contact_laws.glsl that performs the
+// same operations in the same order; VulkanLaws.SameBitsAsTheCppLawsOnTheDevice requires identical bits.
 // Sign conventions: overlap delta > 0 while in contact; approach speed (d delta / dt)
 // is positive while the surfaces approach. Normal forces are magnitudes along the
 // contact normal, repulsive, never negative (no-tension cut-off: the contact ends
@@ -175,6 +179,15 @@ inline Vec3 mindlinCoulombForce(double kt, double friction, double normalForceMa
     spring *= (kt > 0.0 && trial > 0.0) ? limit / trial : 0.0;
   }
   return -kt * spring;
+}
+
+/// Cundall local damping of one degree of freedom (PHYSICS.md s.1): F - alpha |F| sign(v),
+/// with sign(0) = 0 (N or N m). Branch-free: the damping term takes the sign of v by
+/// copysign, and vanishes at v = 0.
+inline double cundallDamping(double force, double velocity, double alpha)
+{
+  const double damping = std::copysign(alpha * std::abs(force), velocity); // N
+  return force - (velocity != 0.0 ? damping : 0.0);
 }
 
 /// Restitution delivered by one head-on collision of the given law with damping

@@ -17,5 +17,9 @@ struct SpirvModule {
 /// shaders/particle_volume.comp: per-particle sphere/disc volume (m^3).
 SpirvModule particleVolume();
 
+/// The module compiled from shaders/.../<name>.comp (e.g. "gather"). Throws
+/// std::out_of_range for a name that is not embedded.
+SpirvModule module(const char* name);
+
 } // namespace shaders
 } // namespace dem

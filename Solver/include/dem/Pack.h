@@ -97,6 +97,47 @@ struct GrowReport {
   std::string summary() const;
 };
 
+/// Compact Elements: radius expansion with relaxation (Potyondy & Cundall 2004), the way
+/// bonded-particle codes build dense material. Stage by stage, every particle that is not
+/// fixed grows by the same factor (at most kMaxStageGrowth per stage, adaptively less as
+/// the pack jams), and the solver cycles the pack frictionless, without gravity, in the
+/// closed box, with local damping kCompactDamping, until it is in equilibrium: the
+/// unbalanced force ratio below Equilibrium Ratio, or every overlap below a fifth of
+/// kOverlapBar (a pack looser than jamming relaxes to no contact at all). Growth stops at
+/// the Target Porosity (solid volume over the box volume) or when the relaxed mean
+/// (Love-Weber) stress passes the ceiling; then the radius factor is bisected back to the
+/// largest one whose relaxed stress stays within it. The pack that comes out is at rest,
+/// never stepped, with the user's material, gravity and settings.
+struct CompactParameters {
+  double targetPorosity = 0.37;   ///< void fraction to reach, (0, 1)
+  double stressCeiling = 0.0;     ///< Pa, Maximum Locked-In Stress, >= 0; 0 = kDefaultCeilingOverModulus x Young's Modulus
+  double equilibriumRatio = 0.01; ///< unbalanced force ratio that counts as equilibrium, [1e-6, 0.5]
+};
+/// The default Maximum Locked-In Stress over Young's Modulus: a Hertz pack at this mean
+/// stress keeps its largest overlaps near 0.3 % of the radius.
+constexpr double kDefaultCeilingOverModulus = 2.0e-6;
+/// Cundall local damping while compacting.
+constexpr double kCompactDamping = 0.0;
+/// The bar on overlaps left after compaction: 0.5 % of the smaller radius.
+constexpr double kOverlapBar = 0.005;
+
+/// What Compact Elements did.
+struct CompactReport {
+  std::size_t particles = 0;
+  double targetPorosity = 0.0;
+  double porosityBefore = 1.0;
+  double porosity = 1.0;            ///< Current Porosity after compaction
+  double lockedInStress = 0.0;      ///< Pa, relaxed mean stress (compression positive)
+  double stressCeiling = 0.0;       ///< Pa, the ceiling used
+  double largestOverlap = 0.0;      ///< largest overlap over the smaller radius (walls: over the radius)
+  double unbalancedForceRatio = 0.0; ///< at the end of the last relaxation
+  std::size_t stages = 0;           ///< growth (and bisection) stages
+  std::int64_t steps = 0;           ///< solver steps in all
+  bool targetReached = false;
+  bool jammed = false;              ///< stopped by the stress ceiling before the target
+  std::string summary() const;
+};
+
 /// Throws InputError naming the parameter for any invalid pack parameter, domain, or
 /// combination (Minimum Size > Maximum Size, box that cannot hold one particle, a
 /// particle count whose memory exceeds the machine's, a fine zone outside the box, ...).
@@ -119,6 +160,17 @@ PackReport addElements(Model& model, const PackParameters& params);
 /// Expands each particle, in slot order, into the gap to its nearest neighbour surface
 /// (or wall on a non-periodic axis). Never creates overlap.
 GrowReport growElements(Model& model);
+
+/// Throws InputError naming the parameter for an invalid compaction parameter.
+void validate(const CompactParameters& params);
+/// The Maximum Locked-In Stress used when the parameter is 0 (Pa).
+double defaultStressCeiling(const Material& material);
+/// Brings the pack to params.targetPorosity by radius expansion with relaxation (see
+/// CompactParameters). Throws InputError for a cemented model.
+CompactReport compactElements(Model& model, const CompactParameters& params);
+/// The largest overlap in the model: over particle pairs, overlap / min(rA, rB); against
+/// the box walls (non-periodic moving axes), overlap / r. 0 when nothing overlaps.
+double largestOverlap(const Model& model);
 
 /// Current Porosity: 1 - (solid volume) / (occupied volume), never below 0. The solid
 /// volume counts the volume two overlapping particles share once (dem/Overlaps.h). The occupied volume is the

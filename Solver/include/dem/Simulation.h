@@ -62,11 +62,23 @@ void resetWalls(Model& model);
 
 struct InteractionForces;
 
+/// Where a Simulation steps: the CPU backend, or the GPU (Vulkan) backend when a device
+/// can run the model (else the CPU, and path() says why).
+enum class SolverDevice { CPU, GPU };
+
+/// Empty when this machine has a Vulkan device that can run the GPU solver (a GPU request
+/// then uses it when the model fits in its memory); otherwise why not, in the words a
+/// fallback would use ("no Vulkan device", "... has no double precision in shaders ...").
+std::string gpuUnavailableReason();
+
 class Simulation {
 public:
   /// Validates the model and settings, calibrates the contact damping, chooses the
   /// timestep and builds the neighbour list. Walls are created if the model has none.
-  explicit Simulation(Model& model);
+  /// SolverDevice::GPU runs the step on a Vulkan device when one can run the model (no
+  /// device, no double precision, too little memory: the CPU, see path()). Both give the
+  /// same bits on a device that rounds double precision as IEEE 754 (lavapipe does).
+  explicit Simulation(Model& model, SolverDevice device = SolverDevice::CPU);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -80,9 +92,14 @@ public:
   double timestep() const { return timestep_; }
   /// Non-empty when a requested timestep was overridden (says both values).
   const std::string& timestepMessage() const { return timestepMessage_; }
-  /// Which path runs: "CPU serial (why: too few particles for threads, Threads = 1)" or
-  /// "CPU OpenMP (N threads)".
+  /// Which path runs: "CPU serial (why: too few particles for threads, Threads = 1)",
+  /// "CPU OpenMP (N threads)", "GPU Vulkan: <device>", or after a fallback
+  /// "CPU ...: GPU requested, fell back because <reason>".
   std::string path() const;
+  /// Device memory the run holds (zero on the CPU).
+  DeviceMemory deviceMemory() const { return backend_->deviceMemory(); }
+  /// Why the GPU was requested but not used (empty otherwise).
+  const std::string& gpuFallbackReason() const { return gpuFallbackReason_; }
   const ContactModel& contactModel() const { return contactModel_; }
 
   Diagnostics diagnostics() const;
@@ -114,6 +131,7 @@ private:
   double critical_ = 0.0;
   double timestep_ = 0.0;
   std::string timestepMessage_;
+  std::string gpuFallbackReason_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
   double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
   bool broken_ = false;                 ///< an instability stopped the run

@@ -9,9 +9,32 @@
 
 #include "dem/Model.h"
 
+#include <algorithm>
 #include <array>
 
 namespace dem {
+
+/// The servo law (PHYSICS.md s.4): the velocity (m/s, along the wall's axis) of a
+/// servo-controlled wall. The servo controls the elastic push `elasticForce` (N; the
+/// viscous part of the wall forces follows the wall's own speed, and feeding it back makes
+/// the servo chatter) over the face `area` (m^2): it moves outward at u = G (sigma -
+/// targetStress), G = servoAlpha A / (contactStiffness dt) with `contactStiffness` (N/m)
+/// the sum over the wall's contacts; without contact it closes in at `maxSpeed` (m/s);
+/// |u| <= maxSpeed. `side` 0 is the low face (outward is -axis). GLSL twin:
+/// shaders/include/servo_law.glsl.
+inline double servoWallVelocity(double elasticForce, double contactStiffness, double area,
+                                double targetStress, double servoAlpha, double dt,
+                                double maxSpeed, int side)
+{
+  const double measured = elasticForce / area; // Pa, compression positive
+  double outward = -maxSpeed;                  // no contact: close in
+  if (contactStiffness > 0.0) {
+    const double gain = servoAlpha * area / (contactStiffness * dt);
+    outward = gain * (measured - targetStress);
+  }
+  outward = std::max(-maxSpeed, std::min(maxSpeed, outward));
+  return side == 0 ? -outward : outward;
+}
 
 /// The specimen's current size along X, Y, Z (m): between the walls where they are active
 /// (or driven, as the tension platen); on the unwalled sides of an unconfined test, the

@@ -1,6 +1,7 @@
 #include "backends/cpu/CpuBackend.h"
 
 #include "SlotLookup.h"
+#include "dem/BondLaw.h"
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
 #include "dem/SizeClassGrids.h"
@@ -17,15 +18,6 @@
 
 namespace dem {
 namespace {
-
-/// Cundall local damping of one degree of freedom (PHYSICS.md s.1):
-/// F - alpha |F| sign(v), with sign(0) = 0. Branch-free: the damping term takes the sign
-/// of v by copysign, and vanishes at v = 0.
-double cundall(double force, double velocity, double alpha)
-{
-  const double damping = std::copysign(alpha * std::abs(force), velocity); // N
-  return force - (velocity != 0.0 ? damping : 0.0);
-}
 
 int availableThreads()
 {
@@ -619,8 +611,8 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
     Vec3 dampedTorque = torque;
     if (alpha > 0.0) {
       for (int c = 0; c < 3; ++c) {
-        damped[c] = cundall(force[c], p.velocity[i][c], alpha);
-        dampedTorque[c] = cundall(torque[c], p.angularVelocity[i][c], alpha);
+        damped[c] = cundallDamping(force[c], p.velocity[i][c], alpha);
+        dampedTorque[c] = cundallDamping(torque[c], p.angularVelocity[i][c], alpha);
       }
     }
     p.force[i] = damped;
@@ -736,21 +728,11 @@ void CpuBackend::computeBondForces(bool incrementState)
       const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
         p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
       const Vec3 relativeSpin = p.angularVelocity[i] - p.angularVelocity[j];
-      const double kn = b.normalStiffness[k];
-      const double ks = b.shearStiffness[k];
-      // dFn = kn A d(separation): positive (tension) when B moves away from A.
-      b.normalForce[k] -= kn * section.area * relativeVelocity.dot(normal) * dt;
-      // dFs = -ks A (tangential displacement of A relative to B), in the rotated plane.
-      b.shearForce[k] = rotateIntoPlane(b.shearForce[k], normal) -
-        ks * section.area * inPlane(relativeVelocity, normal) * dt;
-      // dMt = -ks J d(theta twist) (3D); dMb = -kn I d(theta bend).
-      if (!planar) {
-        b.twistingMoment[k] -= ks * section.polar * relativeSpin.dot(normal) * dt;
-      }
-      b.bendingMoment[k] = rotateIntoPlane(b.bendingMoment[k], normal) -
-        kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+      incrementBond(section, b.normalStiffness[k], b.shearStiffness[k], planar, normal,
+                    relativeVelocity, relativeSpin, dt, b.normalForce[k], b.shearForce[k],
+                    b.twistingMoment[k], b.bendingMoment[k]);
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
-        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+        b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
       const BondFailure failure =
         bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
       if (failure != BondFailure::Intact) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs a rendering command under xvfb-run. xvfb-run -a occasionally fails to bring up
-# or reach its X server ("bad X server connection"); that is retried (up to 3 times),
-# any other failure is returned as is.
+# Runs a rendering command under xvfb-run (the main job, the pvbatch tests). xvfb-run -a
+# occasionally fails to bring up or reach its X server ("bad X server connection"); that
+# is retried (up to 3 times), any other failure is returned as is.
 set -u
 for attempt in 1 2 3; do
   log=$(mktemp)

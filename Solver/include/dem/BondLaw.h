@@ -1,0 +1,35 @@
+// RockDEM engine: the incremental update of a parallel bond (Potyondy & Cundall 2004;
+// PHYSICS.md section 3). With dem::bondSection, dem::bondStresses and dem::bondFailure
+// (dem/Bonds.h) it is the bond's force law; the GLSL twin is shaders/include/bond_laws.glsl
+// (same operations in the same order; VulkanLaws.SameBitsAsTheCppLawsOnTheDevice requires identical bits). SI units.
+#pragma once
+
+#include "dem/Bonds.h"
+#include "dem/ContactLaws.h"
+
+namespace dem {
+
+/// One step of an intact bond: its normal force (N, positive in tension), shear force (N,
+/// in the bond plane), twisting moment (N m, 3D only) and bending moment (N m) follow the
+/// relative motion of its ends over `dt` (s). `normal`: unit bond axis from A to B;
+/// `relativeVelocity`: velocity of A's contact point relative to B's (m/s);
+/// `relativeSpin`: A's angular velocity minus B's (rad/s); kn, ks: stiffness per unit
+/// area (Pa/m). The stored shear force and bending moment are first turned into the
+/// current bond plane.
+inline void incrementBond(const BondSection& section, double kn, double ks, bool planar,
+                          const Vec3& normal, const Vec3& relativeVelocity,
+                          const Vec3& relativeSpin, double dt, double& normalForce,
+                          Vec3& shearForce, double& twistingMoment, Vec3& bendingMoment)
+{
+  // dFn = kn A d(separation): positive (tension) when B moves away from A.
+  normalForce -= kn * section.area * relativeVelocity.dot(normal) * dt;
+  // dFs = -ks A (tangential displacement of A relative to B), in the rotated plane.
+  shearForce = rotateIntoPlane(shearForce, normal) - ks * section.area * inPlane(relativeVelocity, normal) * dt;
+  // dMt = -ks J d(theta twist) (3D); dMb = -kn I d(theta bend).
+  if (!planar) {
+    twistingMoment -= ks * section.polar * relativeSpin.dot(normal) * dt;
+  }
+  bendingMoment = rotateIntoPlane(bendingMoment, normal) - kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+}
+
+} // namespace dem

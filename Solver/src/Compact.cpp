@@ -1,0 +1,398 @@
+// RockDEM engine: Compact Elements, radius expansion with relaxation (see dem/Pack.h).
+// SI units: m, Pa.
+#include "dem/Pack.h"
+
+#include "dem/Errors.h"
+#include "dem/Simulation.h"
+#include "dem/SizeClassGrids.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace dem {
+
+namespace {
+
+/// Radius growth of the first stage, and its bounds (relative). A stage that relaxes at
+/// once grows the next one by half as much again; one that runs out of steps halves it.
+constexpr double kFirstStageGrowth = 0.02;
+constexpr double kMaxStageGrowth = 0.02;
+constexpr double kMinStageGrowth = 0.001;
+/// A growth stage relaxes until the unbalanced force ratio is below this (or the stress
+/// has gone), for at most kStageSteps steps.
+constexpr double kStageRatio = 0.05;
+constexpr std::int64_t kStageSteps = 1000;
+/// The final relaxation and each shrinking step: at most this many steps.
+constexpr std::int64_t kFinalSteps = 20000;
+/// Relaxation of a pack found past the working limit before it is shrunk back.
+constexpr std::int64_t kHoldSteps = 1000;
+/// Steps between equilibrium checks.
+constexpr std::int64_t kCheckSteps = 50;
+/// Steps between quenches.
+constexpr std::int64_t kQuenchSteps = 5;
+/// FIRE's mixing factor (its alpha at the start, kept fixed).
+constexpr double kFireMixing = 0.1;
+/// Timestep Safety while compacting: the overlaps stay below a few per cent of the radius,
+/// where a Hertz contact is far softer than the Rayleigh limit assumes.
+constexpr double kCompactTimestepSafety = 0.5;
+/// Halving the timestep after an instability stops below this safety (the error then stands).
+constexpr double kSmallestTimestepSafety = 0.01;
+/// Shrinking to the ceiling aims at this fraction of it, and accepts [kLowestShare, 1] of it.
+constexpr double kAimShare = 0.8;
+constexpr double kLowestShare = 0.5;
+constexpr int kShrinkIterations = 8;
+/// Stepping down: at most this many steps, each shrinking the radii by at least this
+/// much; overlaps are brought below this share of the bar.
+constexpr int kStepDownIterations = 40;
+constexpr double kSmallestStepDown = 1.0e-4;
+constexpr double kOverlapMargin = 0.8;
+/// A relaxed stress below this share of the ceiling counts as no stress (unjammed).
+constexpr double kStressFloorShare = 0.01;
+/// Growth stops once a stage's stress passes this multiple of the ceiling (jammed).
+constexpr double kWorkingLimit = 10.0;
+/// A pack that relaxes below the ceiling where growth stopped grows on with this share of
+/// the last stage growth.
+constexpr double kLateGrowthShare = 0.25;
+
+/// Solid volume over the box volume (2D: disc areas over the section), the measure
+/// compaction works on: a compacted pack fills the whole box.
+double boxSolidFraction(const Model& model)
+{
+  double solid = 0.0;
+  for (double r : model.particles.radius) {
+    solid += particleVolume(model.domain, r);
+  }
+  const Vec3& s = model.domain.size;
+  return solid / (s.x() * s.y() * s.z());
+}
+
+/// Scales every movable radius by `factor` from the reference radii. Masses follow with
+/// density scaling: every grain gets the mass that gives it the contact frequency of the
+/// smallest at the same overlap strain (a Hertz contact stiffness grows as r at equal
+/// strain, so m proportional to r), so that the large
+/// grains relax as fast as the small ones. Equilibrium does not depend on masses; the
+/// true masses come back at the end (updateMassProperties).
+void setScale(Model& model, const std::vector<double>& reference, double factor)
+{
+  Particles& p = model.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!(p.flags[i] & FlagFixed)) {
+      p.radius[i] = reference[i] * factor;
+    }
+  }
+  updateMassProperties(model);
+  const auto smallest = std::min_element(p.radius.begin(), p.radius.end());
+  const std::size_t k = static_cast<std::size_t>(smallest - p.radius.begin());
+  const double m0 = p.mass[k];
+  const double r0 = p.radius[k];
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r = p.radius[i];
+    p.mass[i] = m0 * (r / r0);
+    p.inertia[i] = p.mass[i] * p.inertia[k] / m0 * (r * r) / (r0 * r0);
+  }
+}
+
+/// Drains kinetic energy without slowing the descent: the velocity update of FIRE
+/// (Bitzek et al. 2006, PRL 97:170201) at a fixed timestep. While the forces do positive
+/// work on the grains (power F.v > 0), the velocities turn towards the forces,
+/// v <- (1 - a) v + a |v| F/|F| (norms over all grains); as soon as the power turns
+/// negative, every grain stops. Rotation plays no part in a frictionless pack: spins
+/// are zeroed.
+void quench(Particles& p)
+{
+  double power = 0.0;
+  double vv = 0.0;
+  double ff = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    power += p.force[i].dot(p.velocity[i]);
+    vv += p.velocity[i].squaredNorm();
+    ff += p.force[i].squaredNorm();
+  }
+  if (!(power > 0.0) || !(ff > 0.0)) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p.velocity[i].setZero();
+      p.angularVelocity[i].setZero();
+    }
+    return;
+  }
+  const double steer = kFireMixing * std::sqrt(vv / ff);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.velocity[i] = (1.0 - kFireMixing) * p.velocity[i] + steer * p.force[i];
+    p.angularVelocity[i].setZero();
+  }
+}
+
+/// State of a relaxation: mean stress (Pa, compression positive), unbalanced force
+/// ratio and steps taken.
+struct Relaxed {
+  double meanStress = 0.0;
+  double unbalancedForceRatio = 0.0;
+  std::int64_t steps = 0;
+  bool equilibrium = false;
+};
+
+/// Cycles the frictionless model until it is in equilibrium: the unbalanced force ratio
+/// below `ratio`, or the mean stress below `stressFloor` (a pack looser than jamming
+/// relaxes to no stress at all, where the ratio means nothing), or `maxSteps` steps.
+Relaxed relax(Model& model, double ratio, double stressFloor, std::int64_t maxSteps)
+{
+  Relaxed out;
+  model.clock.step = 0;
+  model.clock.time = 0.0;
+  model.contacts.clear();
+  Particles& p = model.particles;
+  auto sim = std::make_unique<Simulation>(model);
+  while (out.steps < maxSteps) {
+    try {
+      for (std::int64_t s = 0; s < kCheckSteps; s += kQuenchSteps) {
+        sim->advance(kQuenchSteps);
+        quench(p);
+      }
+    } catch (const InstabilityError&) {
+      // Overlaps past what the timestep can follow (a stage grew too far past jamming):
+      // the model is back at its last good state; go on with half the timestep.
+      if (model.solver.timestepSafety < kSmallestTimestepSafety) {
+        throw;
+      }
+      model.solver.timestepSafety *= 0.5;
+      model.clock.step = 0;
+      model.clock.time = 0.0;
+      model.contacts.clear();
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        p.velocity[i].setZero();
+        p.angularVelocity[i].setZero();
+      }
+      sim = std::make_unique<Simulation>(model);
+      continue;
+    }
+    out.steps += kCheckSteps;
+    out.unbalancedForceRatio = sim->diagnostics().unbalancedForceRatio;
+    out.meanStress = sim->measurements().meanStress;
+    if (out.unbalancedForceRatio < ratio || out.meanStress < stressFloor) {
+      out.equilibrium = true;
+      break;
+    }
+  }
+  return out;
+}
+
+/// Overlaps of a model: the largest over the smaller radius (pairs) or the radius (walls of
+/// the box on its non-periodic moving axes), and the mean overlap strain over the
+/// overlapping pairs, overlap / (rA + rB).
+struct OverlapStatistics {
+  double largest = 0.0;
+  double meanStrain = 0.0;
+  std::size_t pairs = 0;
+};
+
+OverlapStatistics overlapStatistics(const Model& model)
+{
+  OverlapStatistics out;
+  const Particles& p = model.particles;
+  const Domain& d = model.domain;
+  if (p.empty()) {
+    return out;
+  }
+  const auto [smallest, largest] = std::minmax_element(p.radius.begin(), p.radius.end());
+  SizeClassGrids grids(d, *smallest, *largest, std::max(SizeClassGrids::kDefaultMaxCellsPerClass, p.size()));
+  grids.insertAll(p);
+  double strain = 0.0;
+  std::vector<std::size_t> keys;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    grids.neighboursWithin(p.position[i], p.radius[i], 0.0, i, keys);
+    for (std::size_t j : keys) {
+      if (j < i) {
+        continue; // each pair once
+      }
+      const double sum = p.radius[i] + p.radius[j];
+      const double overlap = sum - grids.separation(p.position[i], p.position[j]).norm();
+      out.largest = std::max(out.largest, overlap / std::min(p.radius[i], p.radius[j]));
+      if (overlap > 0.0) {
+        strain += overlap / sum;
+        ++out.pairs;
+      }
+    }
+    for (int a = 0; a < d.dimension(); ++a) {
+      if (!d.periodic[a]) {
+        const double gap = std::min(p.position[i][a] - d.origin[a], d.upper()[a] - p.position[i][a]);
+        out.largest = std::max(out.largest, (p.radius[i] - gap) / p.radius[i]);
+      }
+    }
+  }
+  out.meanStrain = out.pairs ? strain / static_cast<double>(out.pairs) : 0.0;
+  return out;
+}
+
+} // namespace
+
+void validate(const CompactParameters& params)
+{
+  requireInOpenRange("Target Porosity", params.targetPorosity, 0.0, 1.0);
+  requireNonNegative("Maximum Locked-In Stress", params.stressCeiling, "Pa");
+  requireInRange("Equilibrium Ratio", params.equilibriumRatio, 1e-6, 0.5);
+}
+
+double defaultStressCeiling(const Material& material)
+{
+  return kDefaultCeilingOverModulus * material.youngsModulus;
+}
+
+double largestOverlap(const Model& model)
+{
+  return overlapStatistics(model).largest;
+}
+
+CompactReport compactElements(Model& model, const CompactParameters& params)
+{
+  validate(params);
+  validate(model.domain);
+  validate(model.material);
+  validate(model.particles);
+  if (model.bonds.size() > 0) {
+    throw InputError("Compact Elements works on an uncemented pack, but this model has " +
+                     std::to_string(model.bonds.size()) + " bonds: compact before cementing.");
+  }
+  CompactReport report;
+  report.particles = model.particles.size();
+  report.targetPorosity = params.targetPorosity;
+  report.porosityBefore = currentPorosity(model);
+  report.stressCeiling =
+    params.stressCeiling > 0.0 ? params.stressCeiling : defaultStressCeiling(model.material);
+  if (model.particles.empty()) {
+    report.porosity = report.porosityBefore;
+    return report;
+  }
+
+  // The relaxation runs frictionless, without gravity, in the closed box, from rest.
+  const Material material = model.material;
+  const Vec3 gravity = model.gravity;
+  const SolverSettings solver = model.solver;
+  const LoadTestState test = model.test;
+  const Clock clock = model.clock;
+  const std::vector<Wall> walls = model.walls;
+  model.material.friction = 0.0;
+  model.material.rollingFriction = 0.0;
+  model.gravity.setZero();
+  model.solver.settlingDamping = kCompactDamping;
+  model.solver.timestepSafety = kCompactTimestepSafety;
+  model.solver.requestedTimestep = 0.0;
+  model.test = LoadTestState();
+  resetWalls(model);
+
+  const double dimension = model.domain.dimension();
+  const std::vector<double> reference = model.particles.radius;
+  const double startFraction = boxSolidFraction(model);
+  // The radius factor that puts the solid fraction of the box at the target.
+  const double targetScale = std::pow((1.0 - params.targetPorosity) / startFraction, 1.0 / dimension);
+  const double ceiling = report.stressCeiling;
+  const double floor = kStressFloorShare * ceiling;
+
+  // 1. Growth, stage by stage, up to the target or until the pack is jammed: its stress,
+  // relaxed as far as a stage relaxes, past the working limit (kWorkingLimit x ceiling).
+  // 2. Equilibrium where growth stopped; if the stress relaxes below the ceiling there,
+  // the pack was not jammed yet: grow on, more gently.
+  double scale = 1.0;
+  double growth = kFirstStageGrowth;
+  setScale(model, reference, scale);
+  Relaxed state = relax(model, kStageRatio, floor, kStageSteps);
+  report.steps += state.steps;
+  for (;;) {
+    while (scale < targetScale && state.meanStress <= kWorkingLimit * ceiling) {
+      scale = std::min(targetScale, scale * (1.0 + growth));
+      setScale(model, reference, scale);
+      state = relax(model, kStageRatio, floor, kStageSteps);
+      report.steps += state.steps;
+      ++report.stages;
+      if (state.steps <= kCheckSteps) {
+        growth = std::min(kMaxStageGrowth, 1.5 * growth);
+      } else if (!state.equilibrium) {
+        growth = std::max(kMinStageGrowth, 0.5 * growth);
+      }
+    }
+    const bool overcompressed = state.meanStress > kWorkingLimit * ceiling;
+    state = relax(model, params.equilibriumRatio, floor, overcompressed ? kHoldSteps : kFinalSteps);
+    report.steps += state.steps;
+    if (state.meanStress > ceiling || scale >= targetScale) {
+      break;
+    }
+    growth = std::max(kMinStageGrowth, kLateGrowthShare * growth);
+  }
+
+  // 3. Jammed above the ceiling: shrink the radii back to it. A Hertz pack compressed past
+  // jamming carries sigma ~ (s - sJ)^(3/2); the mean overlap strain estimates s - sJ, and
+  // two relaxed points then give the secant in sigma^(2/3).
+  if (state.meanStress > ceiling) {
+    report.jammed = true;
+    double sHigh = scale;
+    double yHigh = std::pow(state.meanStress, 2.0 / 3.0);
+    double jammingScale = scale * (1.0 - overlapStatistics(model).meanStrain);
+    const double aim = std::pow(kAimShare * ceiling, 2.0 / 3.0);
+    for (int k = 0; k < kShrinkIterations; ++k) {
+      // sigma^(2/3) is linear in s between jamming (0) and (sHigh, yHigh).
+      const double next = jammingScale + (sHigh - jammingScale) * aim / yHigh;
+      scale = next;
+      setScale(model, reference, scale);
+      state = relax(model, params.equilibriumRatio, floor, kFinalSteps);
+      report.steps += state.steps;
+      ++report.stages;
+      if (state.meanStress <= ceiling && state.meanStress >= kLowestShare * ceiling) {
+        break;
+      }
+      const double y = std::pow(std::max(state.meanStress, 0.0), 2.0 / 3.0);
+      if (state.meanStress > ceiling || y > 0.0) {
+        // A new point of the line through it and the previous one.
+        const double slope = (yHigh - y) / (sHigh - scale);
+        if (slope > 0.0) {
+          jammingScale = scale - y / slope;
+        }
+        sHigh = scale;
+        yHigh = y;
+      } else {
+        // Below jamming (no stress): jamming lies between here and the last point.
+        jammingScale = scale;
+      }
+    }
+  }
+  // 4. Within the ceiling, but overlaps past the bar (a ceiling set high): and in any case
+  // until the ceiling holds, step down by a quarter of the mean overlap strain.
+  for (int k = 0; k < kStepDownIterations &&
+                  (state.meanStress > ceiling || overlapStatistics(model).largest > kOverlapMargin * kOverlapBar);
+       ++k) {
+    scale *= 1.0 - std::max(kSmallestStepDown, 0.25 * overlapStatistics(model).meanStrain);
+    setScale(model, reference, scale);
+    state = relax(model, params.equilibriumRatio, floor, kFinalSteps);
+    report.steps += state.steps;
+    ++report.stages;
+  }
+
+  report.lockedInStress = state.meanStress;
+  report.unbalancedForceRatio = state.unbalancedForceRatio;
+
+  // A fresh pack: at rest, never stepped, the user's material and settings back.
+  model.material = material;
+  model.gravity = gravity;
+  model.solver = solver;
+  model.test = test;
+  model.clock = clock;
+  model.walls = walls;
+  model.contacts.clear();
+  Particles& p = model.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.displacement[i].setZero();
+    p.velocity[i].setZero();
+    p.angularVelocity[i].setZero();
+    p.force[i].setZero();
+    p.torque[i].setZero();
+  }
+  updateMassProperties(model);
+  report.porosity = currentPorosity(model);
+  report.largestOverlap = largestOverlap(model);
+  // The target is a solid fraction of the box (growth stops there); Current Porosity counts
+  // the volume overlapping pairs share once, so it lies above by that shared volume.
+  report.targetReached = 1.0 - boxSolidFraction(model) <= params.targetPorosity + 1e-9;
+  return report;
+}
+
+} // namespace dem

@@ -1,0 +1,399 @@
+// Rock behaviour benchmark: builds a dense cemented specimen (Compact Elements, then DEM
+// Cement over a Bond Range) and runs the laboratory tests on it with the engine, printing
+// the figures of Documentation/Rock.md: porosity, bonded coordination, UCS, E,
+// nu, direct tensile strength, UCS / sigma_t, triaxial peaks and the Mohr-Coulomb fit, the
+// share of broken bonds near the platens when the unconfined stress has fallen to 70 % of
+// its peak, and the DFN (DEM Fractures To DFN at default settings) of that frame.
+//
+//   rockdem_bench_rock [--particles 10000] [--range 1.4] [--tests ucs,tension,triaxial]
+//                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6]
+//                      [--moment-contribution 1] ...
+// Every option is listed by --help. SI units.
+#include "CommaList.h"
+#include "dem/Cement.h"
+#include "dem/Fractures.h"
+#include "dem/LoadTest.h"
+#include "dem/Pack.h"
+#include "dem/Simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace dem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Options {
+  long particles = 10000;
+  double aspect = 2.0;          // specimen height / width
+  double rmin = 0.001;          // m
+  double rmax = 0.002;          // m
+  double porosity = 0.36;       // Compact Elements target
+  double modulus = 1e8;         // Pa, grains and bonds
+  double friction = 0.5;
+  double rolling = 0.0;
+  double range = 1.4;
+  double gap = 0.05;
+  double multiplier = 1.0;
+  double ratio = 0.4;           // bond stiffness ratio
+  double tensile = 1e6;         // Pa
+  double cohesion = 4e6;        // Pa
+  double bondFriction = 30.0;   // degrees
+  double beta = 1.0;            // moment contribution factor
+  double scatter = 0.2;
+  double strainPerStep = 2e-7;  // platen strain per step (sets the strain rate)
+  double safety = 0.3;
+  double damping = 0.7;
+  double maxStrain = 0.03;
+  std::string tests = "ucs,tension";
+  std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
+  std::uint64_t seed = 1;
+  int threads = 0;
+  bool profile = false;         // print the broken-bond profile along the axis
+  bool lengthStiffness = false; // experiment: kn = Bond Modulus / (bond length at cementing)
+};
+
+Options parse(int argc, char** argv)
+{
+  Options o;
+  std::map<std::string, double*> doubles = { { "--aspect", &o.aspect }, { "--rmin", &o.rmin },
+    { "--rmax", &o.rmax }, { "--porosity", &o.porosity }, { "--modulus", &o.modulus },
+    { "--friction", &o.friction }, { "--rolling", &o.rolling }, { "--range", &o.range },
+    { "--gap", &o.gap }, { "--multiplier", &o.multiplier }, { "--ratio", &o.ratio },
+    { "--tensile", &o.tensile }, { "--cohesion", &o.cohesion }, { "--bond-friction", &o.bondFriction },
+    { "--moment-contribution", &o.beta },
+    { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
+    { "--damping", &o.damping }, { "--max-strain", &o.maxStrain } };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (doubles.count(a) && i + 1 < argc) {
+      *doubles[a] = std::atof(argv[++i]);
+    } else if (a == "--particles" && i + 1 < argc) {
+      o.particles = std::atol(argv[++i]);
+    } else if (a == "--tests" && i + 1 < argc) {
+      o.tests = argv[++i];
+    } else if (a == "--confining" && i + 1 < argc) {
+      o.confining = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--seed" && i + 1 < argc) {
+      o.seed = static_cast<std::uint64_t>(std::atol(argv[++i]));
+    } else if (a == "--threads" && i + 1 < argc) {
+      o.threads = std::atoi(argv[++i]);
+    } else if (a == "--profile") {
+      o.profile = true;
+    } else if (a == "--length-stiffness") {
+      o.lengthStiffness = true;
+    } else {
+      std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial] [--confining f1,f2,..]"
+                           " [--seed S] [--threads T] [--profile]", argv[0]);
+      for (const auto& d : doubles) {
+        std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
+      }
+      std::fprintf(stderr, "\n");
+      std::exit(2);
+    }
+  }
+  return o;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// The specimen: a W x W x aspect W box holding about `particles` grains at the target
+/// porosity, placed, compacted and cemented.
+Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& compacted)
+{
+  Model m;
+  const double a = o.rmin;
+  const double b = o.rmax;
+  const double meanVolume = 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0;
+  const double volume = o.particles * meanVolume / (1.0 - o.porosity);
+  const double width = std::cbrt(volume / o.aspect);
+  m.domain.size = Vec3(width, width, o.aspect * width);
+  m.material.youngsModulus = o.modulus;
+  m.material.friction = o.friction;
+  m.material.rollingFriction = o.rolling;
+  m.gravity.setZero();
+  m.solver.threads = o.threads;
+  m.solver.parallelThreshold = o.threads == 1 ? 1000000000 : 0;
+  PackParameters p;
+  p.initialElements = o.particles;
+  p.minimumSize = a;
+  p.maximumSize = b;
+  p.randomSeed = o.seed;
+  // Placed loose, at porosity 0.7 in a box `grow` times larger, then the whole pack is
+  // scaled down into the specimen box; Compact Elements grows the radii back.
+  const Vec3 full = m.domain.size;
+  const double grow = std::cbrt((1.0 - o.porosity) / 0.3);
+  m.domain.size = full * grow;
+  buildPack(m, p);
+  for (std::size_t i = 0; i < m.particles.size(); ++i) {
+    m.particles.position[i] /= grow;
+    m.particles.radius[i] /= grow;
+  }
+  m.domain.size = full;
+  updateMassProperties(m);
+  CompactParameters c;
+  c.targetPorosity = o.porosity;
+  compacted = compactElements(m, c);
+  CementParameters cp;
+  cp.bondRange = o.range;
+  cp.gapTolerance = o.gap;
+  cp.bondRadiusMultiplier = o.multiplier;
+  cp.bondModulus = o.modulus;
+  cp.bondStiffnessRatio = o.ratio;
+  cp.tensileStrength = o.tensile;
+  cp.cohesion = o.cohesion;
+  cp.frictionAngle = o.bondFriction;
+  cp.momentContribution = o.beta;
+  cp.strengthScatter = o.scatter;
+  cp.randomSeed = o.seed;
+  cemented = cement(m, cp);
+  if (o.lengthStiffness) {
+    std::map<std::int64_t, std::size_t> slot;
+    for (std::size_t i = 0; i < m.particles.size(); ++i) {
+      slot[m.particles.id[i]] = i;
+    }
+    for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+      const std::size_t i = slot[m.bonds.idA[k]];
+      const std::size_t j = slot[m.bonds.idB[k]];
+      const double length = (m.particles.position[j] - m.particles.position[i]).norm();
+      const double contact = m.particles.radius[i] + m.particles.radius[j];
+      const double factor = contact / std::max(length, contact);
+      m.bonds.normalStiffness[k] *= factor;
+      m.bonds.shearStiffness[k] *= factor;
+    }
+  }
+  m.solver.timestepSafety = o.safety;
+  m.solver.settlingDamping = o.damping;
+  return m;
+}
+
+struct TestResult {
+  double peak = 0.0;          // Pa (tension: the largest pull, positive)
+  double peakStrain = 0.0;
+  double E = 0.0, nu = 0.0;
+  std::size_t broken = 0;
+  double seconds = 0.0;
+  std::int64_t steps = 0;
+  double nearPlatens = 0.0;   // share of broken bonds within two mean diameters of a platen
+  std::string dfn;
+  std::size_t discs = 0;
+  double largestDisc = 0.0;   // m
+  double discShare = 0.0;     // broken bonds in discs / broken bonds
+  double strainAt70 = 0.0;
+};
+
+/// Broken bonds near the platens (within two mean diameters of either end of the specimen
+/// along Z, at their failure positions), over all broken bonds; optional profile.
+double platenShare(const Model& m, bool profile)
+{
+  const Wall& low = m.walls[4];
+  const Wall& high = m.walls[5];
+  const double band = 2.0 * meanParticleDiameter(m);
+  std::size_t near = 0, all = 0;
+  const int bins = 10;
+  std::vector<std::size_t> histogram(bins, 0);
+  for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+    if (!m.bonds.broken(k)) {
+      continue;
+    }
+    ++all;
+    const double z = m.bonds.failurePosition[k].z();
+    near += (z - low.position < band || high.position - z < band) ? 1 : 0;
+    const int bin = std::clamp(static_cast<int>((z - low.position) / (high.position - low.position) * bins), 0, bins - 1);
+    ++histogram[bin];
+  }
+  if (profile && all > 0) {
+    std::printf("    broken-bond profile along Z (low platen first, %d bins):", bins);
+    for (std::size_t h : histogram) {
+      std::printf(" %.3f", static_cast<double>(h) / all);
+    }
+    std::printf("\n");
+  }
+  return all ? static_cast<double>(near) / all : 0.0;
+}
+
+/// Least-squares slope of y on x.
+double slope(const std::vector<double>& x, const std::vector<double>& y)
+{
+  const double n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
+/// tension), the shear stage's max strain, or the test is done.
+TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse)
+{
+  TestResult r;
+  const auto start = std::chrono::steady_clock::now();
+  LoadTestSettings s;
+  s.mode = mode;
+  s.axis = 2;
+  s.confiningStress = confining > 0.0 ? confining : 1e6;
+  s.maxStrain = o.maxStrain;
+  s.sampleInterval = 50;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  s.strainRate = o.strainPerStep / sim.timestep();
+  startLoadTest(m, s); // again, with the rate that gives the strain per step
+  Simulation run(m);
+  std::vector<double> strain, stress, lateral;
+  bool fallen = false;
+  while (m.test.stage != TestStage::Done && !fallen) {
+    run.advance(s.sampleInterval);
+    r.steps += s.sampleInterval;
+    if (m.test.stage != TestStage::Shear) {
+      continue;
+    }
+    const TestMeasurements me = run.measurements();
+    const double sign = mode == TestMode::Tension ? -1.0 : 1.0;
+    const double e = sign * me.strain[2];
+    const double sigma = mode == TestMode::Triaxial ? me.axialStress : sign * me.axialStress;
+    strain.push_back(e);
+    stress.push_back(sigma);
+    if (std::getenv("RB_TRACE") && strain.size() % 20 == 0) {
+      std::fprintf(stderr, "  %s step %lld strain %.5f stress %.4g peak %.4g broken %zu (%.1f s)\n", modeName(mode),
+                   static_cast<long long>(r.steps), e, sigma, r.peak, countBonds(m.bonds).broken, secondsSince(start));
+    }
+    lateral.push_back(0.5 * (me.strain[0] + me.strain[1]));
+    if (sigma > r.peak) {
+      r.peak = sigma;
+      r.peakStrain = e;
+    }
+    if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
+      fallen = true;
+      r.strainAt70 = e;
+    }
+    if (mode == TestMode::Triaxial && r.peak > 0.0 && sigma < 0.8 * r.peak && e > r.peakStrain) {
+      fallen = true; // past the peak: the envelope needs only the peak
+    }
+  }
+  // Elastic constants between 10 % and 50 % of the peak, before it.
+  std::vector<double> x, y, l;
+  for (std::size_t i = 0; i < stress.size(); ++i) {
+    if (strain[i] <= r.peakStrain && stress[i] >= 0.1 * r.peak && stress[i] <= 0.5 * r.peak) {
+      x.push_back(strain[i]);
+      y.push_back(stress[i]);
+      l.push_back(lateral[i]);
+    }
+  }
+  if (x.size() >= 2) {
+    r.E = slope(x, y);
+    r.nu = -slope(x, l);
+  }
+  r.broken = countBonds(m.bonds).broken;
+  if (analyse) {
+    r.nearPlatens = platenShare(m, o.profile);
+    const FractureNetwork dfn = extractFractures(m, FractureParameters{});
+    r.discs = dfn.discs.size();
+    for (const FractureDisc& d : dfn.discs) {
+      r.largestDisc = std::max(r.largestDisc, d.radius);
+    }
+    r.discShare = dfn.report.total.brokenBonds
+      ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
+    r.dfn = dfn.report.summary();
+  }
+  r.seconds = secondsSince(start);
+  return r;
+}
+
+bool wants(const Options& o, const char* test)
+{
+  return o.tests.find(test) != std::string::npos;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const Options o = parse(argc, argv);
+  auto start = std::chrono::steady_clock::now();
+  CementReport cemented;
+  CompactReport compacted;
+  const Model m = buildSpecimen(o, cemented, compacted);
+  const double width = m.domain.size.x();
+  const double diameter = meanParticleDiameter(m);
+  std::printf("specimen: %zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
+              m.particles.size(), width, width, m.domain.size.z(), width / diameter,
+              compacted.summary().c_str());
+  std::printf("cement: Bond Range %.3g, Moment Contribution %.3g -> %s (%.1f s)\n", o.range, o.beta,
+              cemented.summary().c_str(), secondsSince(start));
+  std::fflush(stdout);
+
+  double ucs = 0.0;
+  if (wants(o, "ucs")) {
+    const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true);
+    ucs = u.peak;
+    std::printf("UCS %.4g Pa at strain %.4g; E %.4g Pa; nu %.3f; broken %zu (%.1f %% of bonds); "
+                "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
+                u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
+                100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
+    std::printf("  DFN: %zu discs, largest radius %.4g m (%.0f %% of the width), %.1f %% of broken bonds in discs\n  %s\n",
+                u.discs, u.largestDisc, 100.0 * u.largestDisc / width, 100.0 * u.discShare, u.dfn.c_str());
+    std::fflush(stdout);
+  }
+  double tensile = 0.0;
+  if (wants(o, "tension")) {
+    const TestResult t = runTest(m, TestMode::Tension, 0.0, o, false);
+    tensile = t.peak;
+    std::printf("direct tension %.4g Pa at strain %.4g; broken %zu (%lld steps, %.1f s)\n", t.peak,
+                t.peakStrain, t.broken, static_cast<long long>(t.steps), t.seconds);
+    if (ucs > 0.0) {
+      std::printf("UCS / sigma_t = %.2f\n", ucs / tensile);
+    }
+    std::fflush(stdout);
+  }
+  if (wants(o, "triaxial") && ucs > 0.0) {
+    std::vector<double> s3{ 0.0 }, s1{ ucs };
+    for (double f : o.confining) {
+      const TestResult t = runTest(m, TestMode::Triaxial, f * ucs, o, false);
+      s3.push_back(f * ucs);
+      s1.push_back(t.peak);
+      std::printf("triaxial sigma3 %.4g Pa (%.0f %% UCS): peak sigma1 %.4g Pa (%lld steps, %.1f s)\n", f * ucs,
+                  100 * f, t.peak, static_cast<long long>(t.steps), t.seconds);
+      std::fflush(stdout);
+    }
+    const double b = slope(s3, s1);
+    double mean = 0.0;
+    for (double v : s1) {
+      mean += v / s1.size();
+    }
+    double a = mean;
+    {
+      double m3 = 0.0;
+      for (double v : s3) {
+        m3 += v / s3.size();
+      }
+      a = mean - b * m3;
+    }
+    double ssr = 0.0, sst = 0.0;
+    for (std::size_t i = 0; i < s1.size(); ++i) {
+      ssr += std::pow(s1[i] - (a + b * s3[i]), 2);
+      sst += std::pow(s1[i] - mean, 2);
+    }
+    const double phi = std::asin((b - 1.0) / (b + 1.0)) * 180.0 / kPi;
+    std::printf("Mohr-Coulomb: sigma1 = %.4g + %.4g sigma3; friction angle %.1f deg, cohesion %.4g Pa, R^2 %.4f\n",
+                a, b, phi, a * (1.0 - std::sin(phi * kPi / 180)) / (2.0 * std::cos(phi * kPi / 180)),
+                sst > 0 ? 1.0 - ssr / sst : 1.0);
+  }
+  std::printf("total %.1f s\n", secondsSince(start));
+  return 0;
+}

@@ -1,0 +1,87 @@
+// RockDEM shaders: the parallel bond (Potyondy & Cundall 2004; PHYSICS.md section 3), the
+// GLSL mirror of dem/Bonds.h (bondSection, bondStresses, bondFailure) and dem/BondLaw.h
+// (incrementBond). Same operations in the same order as the C++ (VulkanLaws.SameBitsAsTheCppLawsOnTheDevice).
+// SI units: m, N, N m, Pa.
+#ifndef ROCKDEM_BOND_LAWS_GLSL
+#define ROCKDEM_BOND_LAWS_GLSL
+
+#include "contact_laws.glsl"
+
+const uint BOND_INTACT = 0u;
+const uint BOND_TENSION = 1u;
+const uint BOND_SHEAR = 2u;
+
+/// dem::BondSection: area (m^2), bending inertia (m^4), polar inertia (m^4, 0 in 2D).
+struct BondSection {
+  double area;
+  double inertia;
+  double polar;
+};
+
+/// dem::bondSection.
+BondSection bondSection(double bondRadius, bool section2D, double slab)
+{
+  const double R = bondRadius;
+  BondSection s;
+  if (section2D) {
+    s.area = 2.0LF * R * slab;
+    s.inertia = 2.0LF / 3.0LF * slab * R * R * R;
+    s.polar = 0.0LF;
+    return s;
+  }
+  const double R2 = R * R;
+  s.area = PI * R2;
+  s.inertia = 0.25LF * PI * R2 * R2;
+  s.polar = 0.5LF * PI * R2 * R2;
+  return s;
+}
+
+/// dem::BondStresses: peripheral tensile and shear stresses and the compressive stress, Pa.
+struct BondStresses {
+  double sigmaMax;
+  double tauMax;
+  double compressive;
+};
+
+/// dem::bondStresses, with beta the bond's Moment Contribution factor (dem::Bonds::momentContribution).
+BondStresses bondStresses(BondSection s, double bondRadius, double normalForce, dvec3 shearForce,
+                          double twistingMoment, dvec3 bendingMoment, double momentContribution)
+{
+  const double beta = momentContribution;
+  BondStresses o;
+  o.sigmaMax = normalForce / s.area + beta * norm3(bendingMoment) * bondRadius / s.inertia;
+  o.tauMax = norm3(shearForce) / s.area +
+    (s.polar > 0.0LF ? beta * abs(twistingMoment) * bondRadius / s.polar : 0.0LF);
+  o.compressive = -normalForce / s.area;
+  return o;
+}
+
+/// dem::bondFailure, with tan(friction angle) given (the host computes std::tan once per
+/// bond: GLSL has no double-precision tangent).
+uint bondFailure(BondStresses stresses, double tensileStrength, double cohesion, double tanFrictionAngle)
+{
+  if (stresses.sigmaMax >= tensileStrength) {
+    return BOND_TENSION;
+  }
+  if (stresses.tauMax >= cohesion + stresses.compressive * tanFrictionAngle) {
+    return BOND_SHEAR;
+  }
+  return BOND_INTACT;
+}
+
+/// dem::incrementBond: one step of the bond's force and moments from the relative motion
+/// of its ends (normal from A to B, unit; relative velocity of the contact point of A to
+/// B, m/s; relative spin, rad/s; dt, s). kn, ks: stiffness per unit area, Pa/m.
+void incrementBond(BondSection section, double kn, double ks, bool planar, dvec3 normal,
+                   dvec3 relativeVelocity, dvec3 relativeSpin, double dt, inout double normalForce,
+                   inout dvec3 shearForce, inout double twistingMoment, inout dvec3 bendingMoment)
+{
+  normalForce -= kn * section.area * dot3(relativeVelocity, normal) * dt;
+  shearForce = rotateIntoPlane(shearForce, normal) - ks * section.area * inPlane(relativeVelocity, normal) * dt;
+  if (!planar) {
+    twistingMoment -= ks * section.polar * dot3(relativeSpin, normal) * dt;
+  }
+  bendingMoment = rotateIntoPlane(bendingMoment, normal) - kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+}
+
+#endif
