@@ -23,6 +23,7 @@
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
+#include <vtkTimeStamp.h>
 
 #include <dlfcn.h>
 
@@ -239,6 +240,8 @@ struct vtkDEMLoadTest::vtkInternals
   int Published = 0;              ///< Number Of Frames 0: the last frame published so far
   int FinishFrame = -1;           ///< the frame where the test finished (or settled); -1: not yet
   int Revision = 0;               ///< changes of the published times
+  bool TimesChanged = false;      ///< RequestData published new times: see ComputePipelineMTime
+  vtkTimeStamp TimesTime;         ///< when the next pass learnt that the times changed
   std::map<int, dem::Model> Checkpoints;
   std::string GravityNote;
   int SavedFrame = -1;     ///< frame last written to SavedPath (-1: none since the rebuild)
@@ -475,6 +478,24 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   press.servoAlpha = this->ServoAlpha;
   press.sampleInterval = this->SampleInterval;
   return press;
+}
+
+int vtkDEMLoadTest::ComputePipelineMTime(vtkInformation* request, vtkInformationVector** inInfoVec,
+  vtkInformationVector* outInfoVec, int requestFromOutputPort, vtkMTimeType* mtime)
+{
+  vtkInternals& in = *this->Internals;
+  if (in.TimesChanged)
+  {
+    in.TimesChanged = false;
+    in.TimesTime.Modified();
+  }
+  if (!this->Superclass::ComputePipelineMTime(
+        request, inInfoVec, outInfoVec, requestFromOutputPort, mtime))
+  {
+    return 0;
+  }
+  *mtime = std::max<vtkMTimeType>(*mtime, in.TimesTime.GetMTime());
+  return 1;
 }
 
 dem::SolverDevice vtkDEMLoadTest::Device() const
@@ -1113,9 +1134,15 @@ int vtkDEMLoadTest::RequestData(
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), dataTime);
   if (in.Revision != revision)
   {
-    // The stage learnt its frames while it ran (its timestep, more frames, its end): the
-    // stages downstream see them at once; the client when it updates its information.
+    // The stage learnt its frames while it ran (its timestep, more frames, its end). They
+    // are published on the output now; the next pipeline pass sees a newer pipeline
+    // MTime (ComputePipelineMTime), so the information pass runs again downstream and
+    // ParaView's post filters and the filters after the stage (DEM Section, Fractures To
+    // DFN, ...) copy the new times instead of keeping those published before the run.
+    // (Not Modified() here: the executives mark the information up to date after this
+    // data pass.) The client proxy then updates their information (vtkSMDEMLoadTestProxy).
     this->PublishTimeSteps(outputVector);
+    in.TimesChanged = true;
   }
   return 1;
 }

@@ -371,6 +371,10 @@ private:
   int FrameOf(double time);
   /// The press settings of this stage's properties (Mode, Axis, Confining Stress, ...).
   dem::LoadTestSettings PressSettings() const;
+  /// The pipeline MTime is this filter's, or later when its last RequestData published
+  /// new times (then the information pass runs again downstream).
+  int ComputePipelineMTime(vtkInformation* request, vtkInformationVector** inInfoVec,
+    vtkInformationVector* outInfoVec, int requestFromOutputPort, vtkMTimeType* mtime) override;
   /// The device GPU Solver asks for.
   dem::SolverDevice Device() const;
   /// The published frames, 0 .. LastFrame(); -1: nothing to publish (invalid settings).

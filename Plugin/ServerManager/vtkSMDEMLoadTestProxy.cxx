@@ -7,6 +7,8 @@
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMSessionProxyManager.h"
 
+#include <set>
+
 vtkStandardNewMacro(vtkSMDEMLoadTestProxy);
 
 vtkSMDEMLoadTestProxy::vtkSMDEMLoadTestProxy() = default;
@@ -35,9 +37,31 @@ bool vtkSMDEMLoadTestProxy::RefreshAfterUpdate()
   if (changed)
   {
     this->UpdatePipelineInformation();
+    // The filters after the stage copy its times: theirs are updated too, so the time
+    // keeper (which lists a filter's times in place of its input's) and Play see the
+    // model's times downstream as well.
+    std::set<vtkSMProxy*> visited;
+    this->UpdateDownstreamInformation(this, visited);
   }
   this->InRefresh = false;
   return changed;
+}
+
+void vtkSMDEMLoadTestProxy::UpdateDownstreamInformation(
+  vtkSMProxy* proxy, std::set<vtkSMProxy*>& visited)
+{
+  vtkSMSessionProxyManager* pxm = this->GetSessionProxyManager();
+  for (unsigned int i = 0; pxm && i < proxy->GetNumberOfConsumers(); ++i)
+  {
+    // Only pipeline filters (registered as sources), not representations or views.
+    auto* consumer = vtkSMSourceProxy::SafeDownCast(proxy->GetConsumerProxy(i));
+    if (!consumer || !visited.insert(consumer).second || !pxm->GetProxyName("sources", consumer))
+    {
+      continue;
+    }
+    consumer->UpdatePipelineInformation();
+    this->UpdateDownstreamInformation(consumer, visited);
+  }
 }
 
 void vtkSMDEMLoadTestProxy::SnapAnimationToTimeSteps()

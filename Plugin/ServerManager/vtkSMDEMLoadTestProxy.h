@@ -8,7 +8,8 @@
  * test that finishes ends its frames there. The algorithm counts these changes (read-only
  * TimeStepsRevision). After every update of this proxy (pvpython UpdatePipeline, Show) the
  * read-only values are pulled, and when the published times changed the pipeline
- * information is updated too, so `TimestepValues`, the time keeper and Play see them.
+ * information is updated too, here and in every filter downstream (which copies the
+ * stage's times), so `TimestepValues`, the time keeper and Play see them.
  * Whenever the pipeline information is updated, an animation scene still in Sequence mode
  * (the default of a pipeline built by a script) is switched to Snap To TimeSteps, so a
  * script's pipeline animates by the stage's frames. In the GUI the RockDEM plugin calls
@@ -19,6 +20,8 @@
 
 #include "RockDEMServerManagerModule.h" // for export macro
 #include "vtkSMDEMSourceProxy.h"
+
+#include <set> // for the filters visited downstream
 
 class ROCKDEMSERVERMANAGER_EXPORT vtkSMDEMLoadTestProxy : public vtkSMDEMSourceProxy
 {
@@ -44,6 +47,8 @@ private:
   void operator=(const vtkSMDEMLoadTestProxy&) = delete;
 
   void SnapAnimationToTimeSteps();
+  /// UpdatePipelineInformation() on every filter downstream of proxy, once each.
+  void UpdateDownstreamInformation(vtkSMProxy* proxy, std::set<vtkSMProxy*>& visited);
 
   int KnownRevision = -1;
   bool InRefresh = false;

@@ -201,7 +201,7 @@ the state is saved through File > Save State. Written by gui_events.py.""", [
     python("g.shot('05_consolidated')"),
     # cement
     menu("menuFilters", "DEMCement"),
-    prop("GapTolerance", "DoubleLineEdit0", "0.1"),
+    prop("GapTolerance", "DoubleRangeWidget/DoubleLineEdit", "0.1"),
     prop("BondModulus", "DoubleLineEdit0", "2e7"),
     prop("TensileStrength", "DoubleLineEdit0", "2e5"),
     prop("Cohesion", "DoubleLineEdit0", "4e5"),
@@ -276,7 +276,7 @@ in the panel. Written by gui_events.py.""", [
     wait(500),
     python("r = GetActiveSource(); g.check(r.GetXMLName() == 'DEMStateReader', 'File > Open made a %s' % r.GetXMLName())"),
     python("n = g.value(r, 'NumberOfParticles'); b = g.value(r, 'Bonds'); "
-           "g.check(n == int(open(g.DATA + '/results.csv').read().splitlines()[1].split(',')[0]) and b > 0, "
+           "import csv; g.check(n == int(next(csv.DictReader(open(g.DATA + '/results.csv')))['elements']) and b > 0, "
            "'the reader shows %d particles (as the main job) and %d bonds' % (n, b))"),
     check_text(PROPERTY + "/Stage/Value", "done"),
     python("d = GetDisplayProperties(r); g.check(d.Representation == 'DEM Spheres' and d.ColorArrayName[1] == 'Radius', "
@@ -313,12 +313,12 @@ gui_events.py.""", [
     wait(500),
     python("g.note('reopened in %.1f s' % g.seconds()); seconds = g.seconds()"),
     python("tests = [p for (n, i), p in GetSources().items() if p.GetXMLName() == 'DEMLoadTest']; "
-           "press = [t for t in tests if t.Mode == 'Compression'][0]; row = open(g.DATA + '/results.csv').read().splitlines()[1].split(','); "
-           "g.check(g.value(press, 'Bonds') == int(row[1]) and g.value(press, 'Stage') == 'done', "
+           "press = [t for t in tests if t.Mode == 'Compression'][0]; import csv; row = next(csv.DictReader(open(g.DATA + '/results.csv'))); "
+           "g.check(g.value(press, 'Bonds') == int(row['bonds']) and g.value(press, 'Stage') == 'done', "
            "'the compression is back at its end (Stage done) with the %d bonds of the main job' % g.value(press, 'Bonds'))"),
-    python("info = press.GetDataInformation(); g.check(info.GetNumberOfPoints() >= int(row[0]) and "
+    python("info = press.GetDataInformation(); g.check(info.GetNumberOfPoints() >= int(row['elements']) and "
            "GetDisplayProperties(press, GetActiveView()).Visibility == 1, "
-           "'the tested specimen is shown: %d particles' % int(row[0]))"),
+           "'the tested specimen is shown: %d particles' % int(row['elements']))"),
     python("views = GetViews(); g.check(len(GetLayouts()) >= 1 and len(views) >= 2, "
            "'the layout is back: %d layout(s), %d views (%s)' % (len(GetLayouts()), len(views), [v.GetXMLName() for v in views]))"),
     python("g.check(seconds < 30.0, 'reopened in %.1f s (under 30 s): the frames came from the checkpoints' % seconds)"),

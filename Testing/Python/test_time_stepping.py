@@ -4,7 +4,8 @@ from its checkpoint (Documentation/StateFile.md).
 
 (a) frames are whole steps: a Frame Interval shorter than one timestep is an error naming
     both; a longer one is snapped (and said so), and every published time is the model's
-    elapsed time at that frame; a request for k x Frame Interval reaches frame k;
+    elapsed time at that frame; a request for k x Frame Interval reaches frame k; filters
+    downstream of the stage (and the time keeper) list the model's times once it has run;
 (b) Number Of Frames above 100,000 (1e9) is an error naming the range, and publishing the
     time steps does not grow the process;
 (c) before it steps, a stage says how long it is: Estimated Steps and Estimated Run Time
@@ -101,6 +102,30 @@ lt.UpdatePipeline(4 * 2.7 * dt)
 c.check(lt.GetDataInformation().DataInformation.GetTime() == published[4],
         "a request for 4 x Frame Interval (%.6g s) reaches frame 4 (%.6g s)" % (4 * 2.7 * dt, published[4]))
 Delete(lt)
+
+# (a') Filters downstream of a stage, created before it has run (so they first copied
+# k x Frame Interval), list the model's times once it has: two DEM filters (ParaView's own
+# filters list no times), the time keeper (which lists a filter's times in place of its
+# input's), and a ParaView filter shows a frame at its model time.
+lt = DEMLoadTest(Input=pack, FrameInterval=2.7 * dt, NumberOfFrames=6)
+dfn = DEMFracturesToDFN(Input=lt)
+cut = DEMSection(Input=lt)
+after = PassArrays(Input=lt)
+c.check(list(dfn.TimestepValues)[1] == 2.7 * dt, "before the run a filter after the stage lists k x Frame Interval")
+lt.UpdatePipeline(list(lt.TimestepValues)[3])
+model_times = list(lt.TimestepValues)
+c.check(model_times[1] == 3 * dt, "after a frame the stage lists the model's times (3 steps a frame)")
+c.check(list(dfn.TimestepValues) == model_times and list(cut.TimestepValues) == model_times,
+        "the filters downstream list the same model times (DFN %s, Section %s, stage %s)"
+        % (list(dfn.TimestepValues)[1], list(cut.TimestepValues)[1], model_times[1]))
+keeper = list(GetTimeKeeper().TimestepValues)
+c.check(model_times[3] in keeper and all(t in model_times for t in keeper),
+        "the time keeper lists the model's times, none of the k x Frame Interval grid")
+after.UpdatePipeline(model_times[3])
+c.check(after.GetDataInformation().DataInformation.GetTime() == model_times[3],
+        "a ParaView filter downstream shows the frame at its model time")
+for proxy in (after, cut, dfn, lt):
+    Delete(proxy)
 
 # (b) 1e9 frames: refused, nothing materialised.
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
