@@ -11,7 +11,6 @@
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <exception>
 
@@ -43,9 +42,7 @@ int vtkDEMSpecimen::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // An instantaneous stage (as DEM Cement): the upstream times are not ours to publish.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
   return 1;
 }
 
