@@ -192,6 +192,7 @@ struct TestResult {
   double largestDisc = 0.0;   // m
   double discShare = 0.0;     // broken bonds in discs / broken bonds
   double strainAt70 = 0.0;
+  bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
 };
 
 /// Broken bonds near the platens (within two mean diameters of either end of the specimen
@@ -286,6 +287,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       fallen = true; // past the peak: the envelope needs only the peak
     }
   }
+  r.peaked = fallen;
   // Elastic constants between 10 % and 50 % of the peak, before it.
   std::vector<double> x, y, l;
   for (std::size_t i = 0; i < stress.size(); ++i) {
@@ -346,6 +348,9 @@ int main(int argc, char** argv)
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
                 u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
+    if (!u.peaked) {
+      std::printf("  no peak: the stress did not fall to 70 %% of its largest value within Max Strain %g\n", o.maxStrain);
+    }
     std::printf("  DFN: %zu discs, largest radius %.4g m (%.0f %% of the width), %.1f %% of broken bonds in discs\n  %s\n",
                 u.discs, u.largestDisc, 100.0 * u.largestDisc / width, 100.0 * u.discShare, u.dfn.c_str());
     std::fflush(stdout);
@@ -367,8 +372,9 @@ int main(int argc, char** argv)
       const TestResult t = runTest(m, TestMode::Triaxial, f * ucs, o, false);
       s3.push_back(f * ucs);
       s1.push_back(t.peak);
-      std::printf("triaxial sigma3 %.4g Pa (%.0f %% UCS): peak sigma1 %.4g Pa (%lld steps, %.1f s)\n", f * ucs,
-                  100 * f, t.peak, static_cast<long long>(t.steps), t.seconds);
+      std::printf("triaxial sigma3 %.4g Pa (%.0f %% UCS): %s sigma1 %.4g Pa at strain %.4g (%lld steps, %.1f s)\n",
+                  f * ucs, 100 * f, t.peaked ? "peak" : "no peak within Max Strain: largest", t.peak, t.peakStrain,
+                  static_cast<long long>(t.steps), t.seconds);
       std::fflush(stdout);
     }
     const double b = slope(s3, s1);
