@@ -25,6 +25,7 @@ constexpr double kLocalScale = 1.0;     ///< local plane of a crack: its set's c
 constexpr std::size_t kLocalMinimum = 6; ///< cracks (itself included) for a local plane
 constexpr double kLocalGate = 0.5;      ///< Local Planarity a crack needs to seed or grow a plane
 constexpr double kGrownShare = 0.05;    ///< a grown plane holds at least this share of its cluster
+constexpr double kGrownFillContrast = 0.5; ///< a grown plane's Fill exceeds the damage fraction D by this share of 1 - D
 constexpr double kGrowThickness = 0.5;  ///< a grown plane takes cracks within this x Cluster Distance of it
 
 struct Crack {
@@ -757,6 +758,8 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   }
 
   const BondSegments segments = bondSegments(model);
+  const double damage = b.size() ? static_cast<double>(cracks.size()) / static_cast<double>(b.size()) : 0.0;
+  const double grownFill = damage + kGrownFillContrast * (1.0 - damage);
   const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
 
   for (int s = 0; s < FractureSetCount; ++s) {
@@ -780,6 +783,19 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
         into->push_back(std::move(d));
       }
       return Verdict::Emitted;
+    };
+    // A plane grown by orientation is a disc only if it is clearly more broken than the
+    // model as a whole: Fill >= D + (1 - D) / 2, D the broken fraction of all bonds (in
+    // diffuse damage a chance alignment has a Fill near D).
+    auto grownDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
+      std::vector<FractureDisc> one;
+      if (tryDisc(part, &one) != Verdict::Emitted || one.front().fill < grownFill) {
+        return false;
+      }
+      if (into) {
+        into->push_back(std::move(one.front()));
+      }
+      return true;
     };
     // Non-planar: perhaps intersecting fractures (splitIntoPlanes). Returns the discs found.
     auto resolve = [&](const std::vector<std::size_t>& cluster) {
@@ -809,8 +825,8 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
       auto found = resolve(cluster);
       if (found.empty() && params.orientationTolerance > 0.0) {
         for (const auto& part : growPlanes(cracks, cluster, params, distance, section2D,
-               [&](const std::vector<std::size_t>& p) { return tryDisc(p, nullptr) == Verdict::Emitted; })) {
-          tryDisc(part, &found);
+               [&](const std::vector<std::size_t>& p) { return grownDisc(p, nullptr); })) {
+          grownDisc(part, &found);
         }
         c.grownClusters += found.empty() ? 0 : 1;
       }

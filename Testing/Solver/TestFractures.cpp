@@ -261,10 +261,12 @@ TEST(Fractures, TwoIntersectingPlanesGiveTwoDiscs)
 }
 
 // Diffuse microcracking is not a fracture: bonds broken at random emit nothing, and the
-// clusters are reported as rejected (too small, or non-planar).
+// clusters are reported as rejected (too small, or non-planar), up to half of all bonds
+// broken (where the planes grown by orientation meet chance alignments, e.g. the grain
+// layers along the walls; their Fill, near the damage fraction, rejects them).
 TEST(Fractures, ScatteredRandomBrokenBondsEmitNothing)
 {
-  for (double fraction : { 0.03, 0.1, 0.25 }) {
+  for (double fraction : { 0.03, 0.1, 0.25, 0.5 }) {
     Model m = cementedPack();
     const auto slot = slots(m);
     Random rng(42);

@@ -137,13 +137,19 @@ Vec3 normalFromDipAzimuth(double dipDegrees, double azimuthDegrees);
 /// Otherwise, with Orientation Tolerance > 0, planes are grown through the cluster by
 /// orientation (a failed specimen's damage: a thick, connected blob with planar parts and
 /// scattered cracks): every crack gets a local plane, the area-weighted fit of the cracks
-/// of its set within two Cluster Distances (its Local Planarity 1 - l1/l2); seeds are
-/// taken in order of decreasing Local Planarity (at least Minimum Planarity), and a plane
+/// of its cluster within Cluster Distance, refitted twice to those within a quarter
+/// Cluster Distance of the plane (its Local Planarity is 1 - l1/l2 of that fit, 0 when
+/// fewer than 6 cracks or fewer than half its neighbours lie near the plane); seeds are
+/// taken in order of decreasing Local Planarity (at least 0.5), and a plane
 /// grows from its seed to neighbours within Cluster Distance whose local normal is within
 /// Orientation Tolerance of the plane's running normal (the fit of its cracks so far,
-/// kept while that fit is planar) and whose position is within one Cluster Distance of
-/// the running plane; only cracks whose Local Planarity reaches the gate grow the plane
-/// further. A grown plane is a disc when it passes the same tests as a cluster; the
+/// kept while that fit is planar) and whose position is within half a Cluster Distance of
+/// the running plane; only cracks whose Local Planarity reaches 0.5 grow the plane
+/// further. Coplanar planes merge (normals within Orientation Tolerance, each centre
+/// within half a Cluster Distance of the other's plane). A grown plane holding at least
+/// 5 % of its cluster (and Minimum Cracks) is a disc when it passes the same tests as a
+/// cluster and is clearly more broken than the model: Fill >= D + (1 - D) / 2, D the
+/// broken fraction of all bonds (a chance alignment in diffuse damage has a Fill near D); the
 /// cracks of no disc stay unassigned (scattered damage). Only when no plane is found is
 /// the cluster rejected as non-planar.
 FractureNetwork extractFractures(const Model& model, const FractureParameters& params);
