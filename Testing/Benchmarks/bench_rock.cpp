@@ -363,9 +363,11 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
     r.dfn = dfn.report.summary();
     for (const FractureDisc& d : dfn.discs) {
-      char line[200];
-      std::snprintf(line, sizeof line, "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, %zu cracks, planarity %.3f, fill %.2f",
-        fractureSetName(d.set), d.dip, d.azimuth, d.radius, d.crackCount(), d.planarity, d.fill);
+      char line[260];
+      const Vec3 c = d.center - m.domain.origin;
+      std::snprintf(line, sizeof line,
+        "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
+        fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
       r.dfn += line;
     }
     r.dfn += "\n  " + randomDamageControl(m);
