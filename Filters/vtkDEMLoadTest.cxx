@@ -1,5 +1,6 @@
 #include "vtkDEMLoadTest.h"
 
+#include "vtkDEMCheckpoint.h"
 #include "vtkDEMModelConversion.h"
 #include "vtkDEMPipelineTime.h"
 
@@ -9,6 +10,7 @@
 #include "dem/Model.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "dem/StageTime.h"
 #include "dem/StateFile.h"
 
 #include <vtkDoubleArray.h>
@@ -17,11 +19,19 @@
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
+#include <vtkTimeStamp.h>
 
+#include <dlfcn.h>
+
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -105,6 +115,85 @@ void HistoryToTable(const dem::LoadTestState& test, int axis, vtkTable* table)
   }
 }
 
+/// Ctrl-C (SIGINT) while a stage steps stops it at the next batch (at the last whole
+/// frame) instead of killing the program with the run half done: pvpython and pvbatch end
+/// on SIGINT (their handler is a crash handler), and a run of unknown length must be
+/// stoppable. The handler is installed only while the stage steps; afterwards the stage
+/// stays stopped until a property changes, so a script's loop over frames ends too, and a
+/// second Ctrl-C ends the program as before. In a Python that handles SIGINT itself (a
+/// plain python importing paraview) Python is told, so it raises KeyboardInterrupt.
+std::atomic<bool> Interrupted{ false };
+extern "C" void OnInterrupt(int)
+{
+  Interrupted = true;
+}
+class InterruptGuard
+{
+public:
+  InterruptGuard()
+  {
+    Interrupted = false;
+    this->Previous = std::signal(SIGINT, OnInterrupt);
+  }
+  ~InterruptGuard()
+  {
+    std::signal(SIGINT, this->Previous);
+    Dl_info owner;
+    if (Interrupted && this->Previous != SIG_DFL && this->Previous != SIG_IGN &&
+      this->Previous != SIG_ERR && dladdr(reinterpret_cast<void*>(this->Previous), &owner) &&
+      owner.dli_fname && std::strstr(owner.dli_fname, "python"))
+    {
+      // Python's own handler was in place: tell Python (found at run time, the filters do
+      // not depend on Python), which raises KeyboardInterrupt.
+      using SetInterrupt = void (*)();
+      if (auto notify = reinterpret_cast<SetInterrupt>(dlsym(RTLD_DEFAULT, "PyErr_SetInterrupt")))
+      {
+        notify();
+      }
+    }
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+private:
+  void (*Previous)(int) = SIG_DFL;
+};
+
+/// "3.2 years", "4.5 min", "12 s": a run time for a message.
+std::string Duration(double seconds)
+{
+  std::ostringstream out;
+  out << std::setprecision(2) << std::fixed;
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+  {
+    return "an unknown time";
+  }
+  if (seconds < 120.0)
+  {
+    out << std::setprecision(1) << seconds << " s";
+  }
+  else if (seconds < 7200.0)
+  {
+    out << std::setprecision(1) << seconds / 60.0 << " min";
+  }
+  else if (seconds < 3.0 * 86400.0)
+  {
+    out << std::setprecision(1) << seconds / 3600.0 << " h";
+  }
+  else if (seconds < 3.0 * 365.25 * 86400.0)
+  {
+    out << std::setprecision(0) << seconds / 86400.0 << " days";
+  }
+  else
+  {
+    out << std::setprecision(1) << seconds / (365.25 * 86400.0) << " years";
+  }
+  return out.str();
+}
+
+/// A run longer than this is announced as a warning (Output Messages pops up).
+constexpr double LongRunSeconds = 600.0;
+
 /// Writes the table as CSV (quoted header, full precision) with the engine's atomic
 /// writer (dem::writeFileAtomically): a crash never leaves a half-written file, and a
 /// failure says why (the system's reason).
@@ -147,10 +236,18 @@ struct vtkDEMLoadTest::vtkInternals
   std::unique_ptr<dem::Simulation> Simulation;
   int Frame = 0;
   std::int64_t StepsPerFrame = 1;
+  double Timestep = 0.0;          ///< s, of the run (frames are StepsPerFrame of these)
+  int Published = 0;              ///< Number Of Frames 0: the last frame published so far
+  int FinishFrame = -1;           ///< the frame where the test finished (or settled); -1: not yet
+  int Revision = 0;               ///< changes of the published times
+  bool TimesChanged = false;      ///< RequestData published new times: see ComputePipelineMTime
+  vtkTimeStamp TimesTime;         ///< when the next pass learnt that the times changed
   std::map<int, dem::Model> Checkpoints;
   std::string GravityNote;
   int SavedFrame = -1;     ///< frame last written to SavedPath (-1: none since the rebuild)
   std::string SavedPath;
+  std::uint64_t Run = 0;   ///< fingerprint of this run (input and settings), for checkpoints
+  std::string Stopped;     ///< why the run was stopped (Ctrl-C, abort); empty: it runs
   std::string CheckpointError; ///< why the last checkpoint failed ("" when it succeeded)
 };
 
@@ -206,6 +303,12 @@ void vtkDEMLoadTest::WriteCheckpoint()
   try
   {
     dem::writeStateAndHistory(in.Model, this->CheckpointFile);
+    rockdem::CheckpointRecord record;
+    record.run = in.Run;
+    record.stepsPerFrame = in.StepsPerFrame;
+    record.frame = in.Frame;
+    record.finished = in.FinishFrame >= 0 && in.FinishFrame == in.Frame;
+    rockdem::WriteCheckpointRecord(this->CheckpointFile, record);
     in.SavedFrame = in.Frame;
     in.SavedPath = this->CheckpointFile;
     in.CheckpointError.clear();
@@ -224,10 +327,42 @@ void vtkDEMLoadTest::WriteCheckpoint()
   }
 }
 
+int vtkDEMLoadTest::WriteHistory(const char* path)
+{
+  vtkInternals& in = *this->Internals;
+  try
+  {
+    if (!path || !*path)
+    {
+      throw dem::InputError("Export Test History: no file name given.");
+    }
+    if (!in.Valid)
+    {
+      throw dem::InputError("Export Test History: the stage has not run yet (no history).");
+    }
+    dem::writeHistoryCSV(in.Model.test, path);
+    this->LastExportMessage = "Exported " + std::to_string(in.Model.test.history.size()) +
+      " history rows to '" + path + "'.";
+    vtkOutputWindowDisplayText(("DEM Load Test: " + this->LastExportMessage + "\n").c_str());
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    this->LastExportMessage = e.what();
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+}
+
+int vtkDEMLoadTest::GetTimeStepsRevision()
+{
+  return this->Internals->Revision;
+}
+
 vtkDEMLoadTest::vtkDEMLoadTest()
   : Mode(MODE_OFF)
-  , FrameInterval(0.01)
-  , NumberOfFrames(20)
+  , FrameInterval(0.0)
+  , NumberOfFrames(0)
   , StepsPerBatch(100)
   , ContactLaw(HERTZ_MINDLIN)
   , TimestepSafety(0.1)
@@ -274,30 +409,136 @@ int vtkDEMLoadTest::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkDEMLoadTest::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkDEMLoadTest::LastFrame()
 {
+  const vtkInternals& in = *this->Internals;
+  if (!(this->FrameInterval >= 0.0) || !std::isfinite(this->FrameInterval) ||
+    this->NumberOfFrames < 0 || this->NumberOfFrames > dem::MaxFrames)
+  {
+    return -1; // reported in RequestData
+  }
+  const bool current = in.Valid && in.BuildTime >= this->GetMTime();
+  int last = 0;
+  if (this->NumberOfFrames > 0)
+  {
+    // Before the stage has run with Frame Interval 0, its frames are not known yet.
+    last = current || this->FrameInterval > 0.0 ? this->NumberOfFrames : 0;
+  }
+  else
+  {
+    last = current ? in.Published : 0;
+  }
+  if (current && in.FinishFrame >= 0)
+  {
+    last = std::min(last, in.FinishFrame);
+  }
+  return last;
+}
+
+void vtkDEMLoadTest::PublishTimeSteps(vtkInformationVector* outputVector)
+{
+  const vtkInternals& in = *this->Internals;
+  const int last = this->LastFrame();
+  const bool current = in.Valid && in.BuildTime >= this->GetMTime();
   // Both ports (model and history table) publish the same frames.
   for (int port = 0; port < outputVector->GetNumberOfInformationObjects(); ++port)
   {
     vtkInformation* outInfo = outputVector->GetInformationObject(port);
-    if (!(this->FrameInterval > 0.0) || this->NumberOfFrames < 1)
+    if (last < 0)
     {
-      // Reported in RequestData; publish no times meanwhile.
       outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
       outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
       continue;
     }
-    std::vector<double> times(static_cast<std::size_t>(this->NumberOfFrames) + 1);
+    // Once the stage has run the frames are times the model reaches (whole steps);
+    // before, k x Frame Interval.
+    const double spacing = current
+      ? static_cast<double>(in.StepsPerFrame) * in.Timestep
+      : this->FrameInterval;
+    std::vector<double> times(static_cast<std::size_t>(last) + 1);
     for (std::size_t k = 0; k < times.size(); ++k)
     {
-      times[k] = static_cast<double>(k) * this->FrameInterval;
+      times[k] = static_cast<double>(k) * spacing;
     }
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
       static_cast<int>(times.size()));
     const double range[2] = { times.front(), times.back() };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
+}
+
+dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
+{
+  dem::LoadTestSettings press;
+  press.mode = static_cast<dem::TestMode>(this->Mode);
+  press.axis = this->Axis;
+  press.confiningStress = this->ConfiningStress;
+  press.strainRate = this->StrainRate;
+  press.maxStrain = this->MaxStrain;
+  press.servoAlpha = this->ServoAlpha;
+  press.sampleInterval = this->SampleInterval;
+  return press;
+}
+
+int vtkDEMLoadTest::ComputePipelineMTime(vtkInformation* request, vtkInformationVector** inInfoVec,
+  vtkInformationVector* outInfoVec, int requestFromOutputPort, vtkMTimeType* mtime)
+{
+  vtkInternals& in = *this->Internals;
+  if (in.TimesChanged)
+  {
+    in.TimesChanged = false;
+    in.TimesTime.Modified();
+  }
+  if (!this->Superclass::ComputePipelineMTime(
+        request, inInfoVec, outInfoVec, requestFromOutputPort, mtime))
+  {
+    return 0;
+  }
+  *mtime = std::max<vtkMTimeType>(*mtime, in.TimesTime.GetMTime());
+  return 1;
+}
+
+dem::SolverDevice vtkDEMLoadTest::Device() const
+{
+  return this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU;
+}
+
+int vtkDEMLoadTest::FrameOf(double time)
+{
+  const vtkInternals& in = *this->Internals;
+  // With Number Of Frames 0 a frame past those published so far is still a frame of the
+  // run (the stage publishes more as it goes), up to where it finishes.
+  const bool open = this->NumberOfFrames == 0 && in.Valid && in.FinishFrame < 0;
+  const int last = open ? static_cast<int>(dem::MaxFrames) : std::max(0, this->LastFrame());
+  if (!std::isfinite(time) || time <= 0.0)
+  {
+    return 0;
+  }
+  double frame = 0.0;
+  const double spacing = static_cast<double>(in.StepsPerFrame) * in.Timestep;
+  const bool known = in.Valid && spacing > 0.0;
+  // A published time (exact), else a time on the k x Frame Interval grid (what a script
+  // computes, and what was published before the stage had run).
+  const double exact = known ? std::round(time / spacing) : -1.0;
+  if (known && std::abs(time - exact * spacing) <= 1e-9 * std::max(time, spacing))
+  {
+    frame = exact;
+  }
+  else if (this->FrameInterval > 0.0)
+  {
+    frame = std::round(time / this->FrameInterval);
+  }
+  else if (known)
+  {
+    frame = exact;
+  }
+  return static_cast<int>(std::min<double>(frame, last));
+}
+
+int vtkDEMLoadTest::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  this->PublishTimeSteps(outputVector);
   return 1;
 }
 
@@ -309,6 +550,247 @@ int vtkDEMLoadTest::RequestUpdateExtent(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   rockdem::RequestLastUpstreamTime(inInfo);
   return 1;
+}
+
+void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
+{
+  vtkInternals& in = *this->Internals;
+  in.Valid = false;
+  in.Failed = false;
+  in.Stopped.clear();
+  in.Checkpoints.clear();
+  in.Simulation.reset();
+  in.SavedFrame = -1;
+  in.FinishFrame = -1;
+  in.CheckpointError.clear();
+  this->LastMessageText.clear();
+  in.Model = rockdem::MultiBlockToModel(input);
+  if (in.Model.particles.empty())
+  {
+    this->LastMessageText = "The input model has no particles: there is nothing to run.";
+    vtkWarningMacro(<< this->LastMessageText);
+  }
+  dem::SolverSettings& s = in.Model.solver;
+  s.contactLaw = static_cast<dem::ContactLaw>(this->ContactLaw);
+  s.timestepSafety = this->TimestepSafety;
+  s.requestedTimestep = this->RequestedTimestep;
+  s.settlingDamping = this->SettlingDamping;
+  s.threads = this->Threads;
+  in.Model.gravity = dem::Vec3(this->Gravity[0], this->Gravity[1], this->Gravity[2]);
+  in.GravityNote.clear();
+  if (in.Model.domain.section2D && this->Gravity[0] == 0.0 && this->Gravity[1] == 0.0 &&
+    this->Gravity[2] != 0.0)
+  {
+    in.Model.gravity = dem::Vec3(0.0, -std::abs(this->Gravity[2]), 0.0);
+    in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
+      " m/s^2 along Z acts along -Y in the section plane.";
+  }
+  const dem::LoadTestSettings press = this->PressSettings();
+  // Start the press (Mode Off restores the box) before the simulation sees the model,
+  // unless the input's test is this one in progress (a reopened state file): then it
+  // continues exactly where it stopped.
+  if (this->ContinueTest && dem::continuesTest(in.Model.test, press))
+  {
+    in.Model.test.settings = press;
+  }
+  else
+  {
+    const std::string removed = dem::startLoadTest(in.Model, press).summary(
+      "whose centres lay beyond the walls of this stage (grains that escaped while those walls "
+      "were down, in an unconfined test)");
+    if (!removed.empty())
+    {
+      vtkWarningMacro(<< removed);
+      this->LastMessageText = removed;
+    }
+  }
+  in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
+  in.Timestep = in.Simulation->timestep();
+  if (!in.Simulation->gpuFallbackReason().empty())
+  {
+    const std::string fallback =
+      "GPU Solver: running on the CPU because " + in.Simulation->gpuFallbackReason() + ".";
+    vtkWarningMacro(<< fallback);
+    this->LastMessageText = fallback;
+  }
+
+  // Frames: whole steps. How far the stage runs: Number Of Frames, or the test's end.
+  const bool untilDone = this->NumberOfFrames == 0;
+  const bool testing = this->Mode != MODE_OFF;
+  const dem::TestEstimate test = dem::estimateRemainingTestSteps(in.Model, in.Timestep);
+  in.StepsPerFrame = this->FrameInterval > 0.0
+    ? dem::stepsPerFrame(this->FrameInterval, in.Timestep)
+    : static_cast<std::int64_t>(this->StepsPerBatch);
+  if (untilDone && testing && test.steps > 0)
+  {
+    // The frames the test is expected to need (5 % more, at least one).
+    std::int64_t frames = (test.steps + test.steps / 20) / in.StepsPerFrame + 1;
+    if (frames > dem::MaxFrames)
+    {
+      if (this->FrameInterval > 0.0)
+      {
+        throw dem::InputError("Frame Interval = " + dem::formatValue(this->FrameInterval) +
+          " s is too short for this test: with Number Of Frames 0 it needs about " +
+          std::to_string(frames) + " frames of " + std::to_string(in.StepsPerFrame) +
+          " steps, more than the " + std::to_string(dem::MaxFrames) +
+          " a stage publishes. Use a longer Frame Interval (or 0 for automatic frames).");
+      }
+      // Automatic frames: longer ones, so the test fits the published frames.
+      in.StepsPerFrame = (test.steps + test.steps / 20) / dem::MaxFrames + 1;
+      frames = dem::MaxFrames;
+    }
+    in.Published = static_cast<int>(frames);
+  }
+  else
+  {
+    // Settling, or a consolidation: publish some frames, more as it goes on.
+    in.Published = untilDone ? 50 : this->NumberOfFrames;
+  }
+  in.Frame = 0;
+  in.Checkpoints[0] = in.Model;
+  this->ResumeFromCheckpointFile(input);
+  in.BuildTime = this->GetMTime();
+  in.InputTime = input ? input->GetMTime() : 0;
+  in.Valid = true;
+  ++in.Revision;
+  this->FrameSteps = static_cast<vtkIdType>(in.StepsPerFrame);
+
+  // Say how long the stage is before it steps.
+  const double fixedSteps = static_cast<double>(this->NumberOfFrames) *
+    static_cast<double>(in.StepsPerFrame);
+  double steps = 0.0;
+  std::string covers;
+  if (!testing)
+  {
+    steps = untilDone ? 0.0 : fixedSteps;
+    covers = untilDone ? "until the model has settled (length unknown)"
+                       : std::to_string(this->NumberOfFrames) + " frames";
+  }
+  else if (untilDone)
+  {
+    steps = test.complete ? static_cast<double>(test.steps) : 0.0;
+    covers = "until the test finishes: " + test.summary;
+  }
+  else
+  {
+    steps = test.complete && test.steps > 0 ? std::min(fixedSteps, static_cast<double>(test.steps))
+                                            : fixedSteps;
+    covers = std::to_string(this->NumberOfFrames) + " frames (" + test.summary + ")";
+  }
+  this->EstimatedSteps = steps;
+  this->MeasuredThroughput = dem::measureThroughput(in.Model);
+  const double particles = static_cast<double>(in.Model.particles.size());
+  this->EstimatedRunTime = this->MeasuredThroughput > 0.0
+    ? steps * particles / this->MeasuredThroughput
+    : 0.0;
+  std::ostringstream estimate;
+  estimate << "DEM Load Test: frames of " << in.StepsPerFrame << " steps of "
+           << dem::formatValue(in.Timestep) << " s (" << dem::formatValue(
+                static_cast<double>(in.StepsPerFrame) * in.Timestep)
+           << " s of model time per frame";
+  if (this->FrameInterval > 0.0 &&
+    static_cast<double>(in.StepsPerFrame) * in.Timestep != this->FrameInterval)
+  {
+    estimate << "; Frame Interval " << dem::formatValue(this->FrameInterval)
+             << " s snapped to whole steps";
+  }
+  estimate << "); the stage runs " << covers << ": ";
+  if (steps > 0.0)
+  {
+    estimate << "about " << dem::formatValue(steps) << " steps of "
+             << in.Model.particles.size() << " particles, " << Duration(this->EstimatedRunTime)
+             << " of computing at the measured "
+             << dem::formatValue(this->MeasuredThroughput) << " particle-steps/s";
+  }
+  else
+  {
+    estimate << "length not known ahead";
+  }
+  estimate << ".";
+  if (this->EstimatedRunTime > LongRunSeconds)
+  {
+    vtkWarningMacro(<< estimate.str()
+                    << " It can be stopped between frames (Pause in the GUI) or with Ctrl-C "
+                       "in pvpython; a shorter Max Strain, a faster Strain Rate, fewer frames "
+                       "or a larger Timestep Safety shortens it.");
+  }
+  else
+  {
+    vtkOutputWindowDisplayText((estimate.str() + "\n").c_str());
+  }
+  if (!in.Simulation->timestepMessage().empty())
+  {
+    vtkWarningMacro(<< in.Simulation->timestepMessage());
+    this->LastMessageText = in.Simulation->timestepMessage();
+  }
+  if (!in.GravityNote.empty())
+  {
+    vtkOutputWindowDisplayText(("DEM Load Test: " + in.GravityNote + "\n").c_str());
+  }
+}
+
+std::string vtkDEMLoadTest::RunSettings()
+{
+  // Everything of this stage that shapes its run (not where it is saved, nor Threads:
+  // results never depend on the thread count).
+  std::ostringstream text;
+  text << std::setprecision(17) << "mode " << this->Mode << " axis " << this->Axis
+       << " confining " << this->ConfiningStress << " rate " << this->StrainRate << " max "
+       << this->MaxStrain << " servo " << this->ServoAlpha << " sample " << this->SampleInterval
+       << " continue " << this->ContinueTest << " interval " << this->FrameInterval << " batch "
+       << (this->FrameInterval > 0.0 ? 0 : this->StepsPerBatch) << " law " << this->ContactLaw
+       << " safety " << this->TimestepSafety << " timestep " << this->RequestedTimestep
+       << " damping " << this->SettlingDamping << " gravity " << this->Gravity[0] << " "
+       << this->Gravity[1] << " " << this->Gravity[2];
+  return text.str();
+}
+
+void vtkDEMLoadTest::ResumeFromCheckpointFile(vtkMultiBlockDataSet* input)
+{
+  vtkInternals& in = *this->Internals;
+  in.Run = rockdem::RunFingerprint(input, this->RunSettings());
+  if (!this->ResumeFromCheckpoint || !this->CheckpointFile || !*this->CheckpointFile)
+  {
+    return;
+  }
+  rockdem::CheckpointRecord record;
+  if (!rockdem::ReadCheckpointRecord(this->CheckpointFile, record))
+  {
+    return;
+  }
+  const std::string file = this->CheckpointFile;
+  if (record.run != in.Run || record.stepsPerFrame != in.StepsPerFrame ||
+    (this->NumberOfFrames > 0 && record.frame > this->NumberOfFrames))
+  {
+    vtkOutputWindowDisplayText(("DEM Load Test: the Checkpoint File '" + file +
+      "' holds another run (its input or settings differ): computing from the start; the file "
+      "is replaced when this run is saved.\n")
+                                 .c_str());
+    return;
+  }
+  try
+  {
+    dem::Model saved = dem::readState(file);
+    in.Checkpoints[record.frame] = std::move(saved);
+    in.SavedFrame = record.frame;
+    in.SavedPath = file;
+    if (record.finished)
+    {
+      in.FinishFrame = record.frame;
+    }
+    if (this->NumberOfFrames == 0)
+    {
+      in.Published = std::max(in.Published, record.frame);
+    }
+    vtkOutputWindowDisplayText(("DEM Load Test: frame " + std::to_string(record.frame) +
+      " of this run is taken from the Checkpoint File '" + file +
+      "' (written by this stage with the same input and settings), not computed again.\n")
+                                 .c_str());
+  }
+  catch (const std::exception& e)
+  {
+    vtkWarningMacro(<< "Checkpoint File: " << e.what() << " Computing from the start.");
+  }
 }
 
 int vtkDEMLoadTest::RequestData(
@@ -332,6 +814,9 @@ int vtkDEMLoadTest::RequestData(
   auto* history = vtkTable::GetData(outputVector, 1);
   auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
   const auto start = std::chrono::steady_clock::now();
+  const int revision = in.Revision;
+  std::string stopped;
+  int frameAsked = 0;
   try
   {
     if (this->Mode < MODE_OFF || this->Mode > MODE_ISOTROPIC)
@@ -340,24 +825,20 @@ int vtkDEMLoadTest::RequestData(
         " is out of range: valid modes are Off (0), Compression (1), Tension (2), Triaxial (3), "
         "Isotropic (4).");
     }
-    dem::LoadTestSettings press;
-    press.mode = static_cast<dem::TestMode>(this->Mode);
-    press.axis = this->Axis;
-    press.confiningStress = this->ConfiningStress;
-    press.strainRate = this->StrainRate;
-    press.maxStrain = this->MaxStrain;
-    press.servoAlpha = this->ServoAlpha;
-    press.sampleInterval = this->SampleInterval;
+    const dem::LoadTestSettings press = this->PressSettings();
     dem::validate(press);
-    if (!(this->FrameInterval > 0.0) || !std::isfinite(this->FrameInterval))
+    if (!(this->FrameInterval >= 0.0) || !std::isfinite(this->FrameInterval))
     {
       throw dem::InputError("Frame Interval = " + dem::formatValue(this->FrameInterval) +
-        " s is out of range: it must be greater than 0 s.");
+        " s is out of range: it must be 0 (frames of Steps Per Batch steps) or a finite number "
+        "of seconds of at least one timestep.");
     }
-    if (this->NumberOfFrames < 1)
+    if (this->NumberOfFrames < 0 || this->NumberOfFrames > dem::MaxFrames)
     {
       throw dem::InputError("Number Of Frames = " + std::to_string(this->NumberOfFrames) +
-        " is out of range: it must be 1 or more.");
+        " is out of range: it must be 0 (until the test finishes) to " +
+        std::to_string(dem::MaxFrames) +
+        " (a longer run takes a longer Frame Interval, not more frames).");
     }
     if (this->CheckpointEvery < 0)
     {
@@ -383,91 +864,25 @@ int vtkDEMLoadTest::RequestData(
       }
     }
 
+    // (Re)build the cache when a parameter or the input changed.
+    const bool stale = !in.Valid || this->GetMTime() > in.BuildTime ||
+      (input && input->GetMTime() != in.InputTime);
+    if (stale)
+    {
+      this->Start(input);
+    }
+
     // Time requested, snapped to a frame.
     double requested = 0.0;
     if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
     {
       requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
     }
-    int frame = static_cast<int>(std::lround(requested / this->FrameInterval));
-    frame = std::max(0, std::min(frame, this->NumberOfFrames));
-
-    // (Re)build the cache when a parameter or the input changed.
-    const bool stale = !in.Valid || this->GetMTime() > in.BuildTime ||
-      (input && input->GetMTime() != in.InputTime);
-    if (stale)
-    {
-      in.Valid = false;
-      in.Failed = false;
-      in.Checkpoints.clear();
-      in.Simulation.reset();
-      in.SavedFrame = -1;
-      in.CheckpointError.clear();
-      this->LastMessageText.clear();
-      in.Model = rockdem::MultiBlockToModel(input);
-      if (in.Model.particles.empty())
-      {
-        this->LastMessageText = "The input model has no particles: there is nothing to run.";
-        vtkWarningMacro(<< this->LastMessageText);
-      }
-      dem::SolverSettings& s = in.Model.solver;
-      s.contactLaw = static_cast<dem::ContactLaw>(this->ContactLaw);
-      s.timestepSafety = this->TimestepSafety;
-      s.requestedTimestep = this->RequestedTimestep;
-      s.settlingDamping = this->SettlingDamping;
-      s.threads = this->Threads;
-      in.Model.gravity = dem::Vec3(this->Gravity[0], this->Gravity[1], this->Gravity[2]);
-      in.GravityNote.clear();
-      if (in.Model.domain.section2D && this->Gravity[0] == 0.0 && this->Gravity[1] == 0.0 &&
-        this->Gravity[2] != 0.0)
-      {
-        in.Model.gravity = dem::Vec3(0.0, -std::abs(this->Gravity[2]), 0.0);
-        in.GravityNote = "2D section: gravity " + dem::formatValue(this->Gravity[2]) +
-          " m/s^2 along Z acts along -Y in the section plane.";
-      }
-      // Start the press (Mode Off restores the box) before the simulation sees the model,
-      // unless the input's test is this one in progress (a reopened state file): then it
-      // continues exactly where it stopped.
-      if (this->ContinueTest && dem::continuesTest(in.Model.test, press))
-      {
-        in.Model.test.settings = press;
-      }
-      else
-      {
-        const std::string removed = dem::startLoadTest(in.Model, press).summary(
-          "whose centres lay beyond the walls of this stage (grains that escaped while those walls "
-          "were down, in an unconfined test)");
-        if (!removed.empty())
-        {
-          vtkWarningMacro(<< removed);
-          this->LastMessageText = removed;
-        }
-      }
-      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
-      in.StepsPerFrame =
-        std::max<std::int64_t>(1, std::llround(this->FrameInterval / in.Simulation->timestep()));
-      in.Frame = 0;
-      in.Checkpoints[0] = in.Model;
-      in.BuildTime = this->GetMTime();
-      in.InputTime = input ? input->GetMTime() : 0;
-      in.Valid = true;
-      if (!in.Simulation->timestepMessage().empty())
-      {
-        vtkWarningMacro(<< in.Simulation->timestepMessage());
-        this->LastMessageText = in.Simulation->timestepMessage();
-      }
-      if (!in.Simulation->gpuFallbackReason().empty())
-      {
-        const std::string fallback =
-          "GPU Solver: running on the CPU because " + in.Simulation->gpuFallbackReason() + ".";
-        vtkWarningMacro(<< fallback);
-        this->LastMessageText = fallback;
-      }
-      if (!in.GravityNote.empty())
-      {
-        vtkOutputWindowDisplayText(("DEM Load Test: " + in.GravityNote + "\n").c_str());
-      }
-    }
+    int frame = this->FrameOf(requested);
+    frameAsked = frame;
+    // The end of the run (what a stage downstream asks for): with Number Of Frames 0,
+    // until the test finishes.
+    const bool toEnd = requested >= rockdem::EndOfRun;
 
     if (frame < in.Frame)
     {
@@ -475,19 +890,39 @@ int vtkDEMLoadTest::RequestData(
       auto it = in.Checkpoints.upper_bound(frame);
       --it; // frame 0 is always kept
       in.Model = it->second;
-      in.Simulation.reset(new dem::Simulation(in.Model, this->GPUSolver ? dem::SolverDevice::GPU : dem::SolverDevice::CPU));
+      in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
       in.Frame = it->first;
       in.Failed = false;
     }
+    else if (frame > in.Frame)
+    {
+      // Forward: start from the latest frame already computed, if it is ahead.
+      auto it = in.Checkpoints.upper_bound(frame);
+      --it;
+      if (it->first > in.Frame)
+      {
+        in.Model = it->second;
+        in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
+        in.Frame = it->first;
+      }
+    }
 
+    InterruptGuard interrupt;
     auto lastStatus = std::chrono::steady_clock::now() - std::chrono::seconds(2);
     const std::int64_t totalSteps = (frame - in.Frame) * in.StepsPerFrame;
     std::int64_t done = 0;
-    while (in.Frame < frame && !in.Failed)
+    stopped = in.Stopped;
+    while (in.Frame < frame && !in.Failed && stopped.empty())
     {
       std::int64_t remaining = in.StepsPerFrame;
       while (remaining > 0)
       {
+        if (Interrupted || this->GetAbortExecute())
+        {
+          stopped = Interrupted ? "interrupted (Ctrl-C)" : "aborted";
+          in.Stopped = stopped;
+          break;
+        }
         const std::int64_t batch = std::min<std::int64_t>(remaining, this->StepsPerBatch);
         in.Simulation->advance(batch);
         remaining -= batch;
@@ -508,6 +943,16 @@ int vtkDEMLoadTest::RequestData(
                << in.Simulation->path() << "\n";
           vtkOutputWindowDisplayText(line.str().c_str());
         }
+      }
+      if (!stopped.empty())
+      {
+        // Back to the last whole frame: published times stay times the model reached.
+        auto it = in.Checkpoints.upper_bound(in.Frame);
+        --it;
+        in.Model = it->second;
+        in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
+        in.Frame = it->first;
+        break;
       }
       ++in.Frame;
       in.Checkpoints[in.Frame] = in.Model;
@@ -537,6 +982,29 @@ int vtkDEMLoadTest::RequestData(
           drop = !drop;
         }
       }
+      // With Number Of Frames 0 the stage ends where the test finished, or (Mode Off)
+      // where the model settled: its frames end here. (A fixed Number Of Frames runs on to
+      // its last frame; a finished test stands still.)
+      const bool finished = this->NumberOfFrames == 0 &&
+        (this->Mode != MODE_OFF ? in.Model.test.stage == dem::TestStage::Done
+                                : dem::isSettled(in.Simulation->diagnostics()));
+      if (finished && in.FinishFrame < 0)
+      {
+        in.FinishFrame = in.Frame;
+        ++in.Revision;
+        break;
+      }
+      if (this->NumberOfFrames == 0 && in.Frame >= in.Published && in.Published < dem::MaxFrames)
+      {
+        // Not finished at the last frame published: publish more.
+        in.Published = static_cast<int>(
+          std::min<std::int64_t>(dem::MaxFrames, in.Published + std::max(10, in.Published / 2)));
+        ++in.Revision;
+      }
+      if (toEnd)
+      {
+        frame = std::max(0, this->LastFrame()); // grows with the frames published
+      }
     }
   }
   catch (const dem::InstabilityError& e)
@@ -554,6 +1022,9 @@ int vtkDEMLoadTest::RequestData(
     this->StatusText = e.what();
     this->LastMessageText = e.what();
     this->StageText = "idle";
+    this->Finished = 0;
+    this->EstimatedSteps = 0.0;
+    this->EstimatedRunTime = 0.0;
     output->Initialize();
     if (history)
     {
@@ -562,13 +1033,25 @@ int vtkDEMLoadTest::RequestData(
     return 0;
   }
 
-  if (in.Frame == this->NumberOfFrames || in.Model.test.stage == dem::TestStage::Done)
+  if (in.Frame == this->LastFrame() || in.FinishFrame == in.Frame ||
+    in.Model.test.stage == dem::TestStage::Done)
   {
     // The end of the run: the last frame, or a test that has finished (a script that
     // stops at Stage done, as rockdem.run_test does, never asks for the last frame).
     this->WriteCheckpoint();
   }
+  this->Finished = in.FinishFrame >= 0 ? (in.Frame >= in.FinishFrame ? 1 : 0)
+                                         : (this->NumberOfFrames > 0 && in.Frame >= this->LastFrame() ? 1 : 0);
   rockdem::ModelToMultiBlock(in.Model, output);
+  if (auto* particles = vtkPolyData::SafeDownCast(output->GetBlock(0)))
+  {
+    // A running model is coloured by how far its particles moved (the default colouring of
+    // ParaView is the active scalars); the radius stays the size of the spheres.
+    if (particles->GetPointData()->GetArray("Displacement"))
+    {
+      particles->GetPointData()->SetActiveScalars("Displacement");
+    }
+  }
   const dem::Diagnostics d = in.Simulation->diagnostics();
   this->CriticalTimestep = in.Simulation->criticalTimestep();
   this->Timestep = in.Simulation->timestep();
@@ -596,7 +1079,9 @@ int vtkDEMLoadTest::RequestData(
   this->PeakStress = in.Model.test.peakStress;
   this->InertialNumber = me.inertialNumber;
   this->SuggestedStrainRate = me.suggestedStrainRate;
-  const double dataTime = static_cast<double>(in.Frame) * this->FrameInterval;
+  // The frame's time: a whole number of steps since the start of the stage.
+  const double dataTime =
+    static_cast<double>(in.Frame) * static_cast<double>(in.StepsPerFrame) * in.Timestep;
   if (history)
   {
     HistoryToTable(in.Model.test, axis, history);
@@ -617,8 +1102,17 @@ int vtkDEMLoadTest::RequestData(
   if (!in.Failed)
   {
     std::ostringstream line;
-    line << "t = " << dem::formatValue(d.time) << " s (frame " << in.Frame << ", step " << d.step
-         << "), elapsed "
+    line << "t = " << dem::formatValue(dataTime) << " s (frame " << in.Frame << ", step "
+         << d.step << ")";
+    if (!stopped.empty())
+    {
+      line << " - " << stopped << ": stopped at the last whole frame (change a property to run again)";
+    }
+    else if (in.FinishFrame >= 0 && in.Frame >= in.FinishFrame)
+    {
+      line << (this->Mode != MODE_OFF ? " - the test has finished" : " - settled");
+    }
+    line << ", elapsed "
          << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
          << " s, RMS displacement " << dem::formatValue(d.rmsDisplacement) << " m, kinetic energy "
          << dem::formatValue(d.kineticEnergy) << " J, contacts " << d.contacts
@@ -631,8 +1125,25 @@ int vtkDEMLoadTest::RequestData(
     }
     this->StatusText = line.str();
     vtkOutputWindowDisplayText(("DEM Load Test: " + line.str() + "\n").c_str());
+    if (!stopped.empty() && stopped == in.Stopped && frameAsked > in.Frame)
+    {
+      vtkWarningMacro(<< "the run was " << stopped << " at frame " << in.Frame
+                      << "; it stays there until a property changes.");
+    }
   }
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), dataTime);
+  if (in.Revision != revision)
+  {
+    // The stage learnt its frames while it ran (its timestep, more frames, its end). They
+    // are published on the output now; the next pipeline pass sees a newer pipeline
+    // MTime (ComputePipelineMTime), so the information pass runs again downstream and
+    // ParaView's post filters and the filters after the stage (DEM Section, Fractures To
+    // DFN, ...) copy the new times instead of keeping those published before the run.
+    // (Not Modified() here: the executives mark the information up to date after this
+    // data pass.) The client proxy then updates their information (vtkSMDEMLoadTestProxy).
+    this->PublishTimeSteps(outputVector);
+    in.TimesChanged = true;
+  }
   return 1;
 }
 
@@ -666,6 +1177,10 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PeakStress: " << this->PeakStress << " Pa\n";
   os << indent << "CriticalTimestep: " << this->CriticalTimestep << " s\n";
   os << indent << "Timestep: " << this->Timestep << " s\n";
+  os << indent << "FrameSteps: " << this->FrameSteps << "\n";
+  os << indent << "EstimatedSteps: " << this->EstimatedSteps << "\n";
+  os << indent << "EstimatedRunTime: " << this->EstimatedRunTime << " s\n";
+  os << indent << "MeasuredThroughput: " << this->MeasuredThroughput << " particle-steps/s\n";
   os << indent << "CurrentPorosity: " << this->CurrentPorosity << "\n";
   os << indent << "KineticEnergy: " << this->KineticEnergy << " J\n";
   os << indent << "NumberOfContacts: " << this->NumberOfContacts << "\n";

@@ -5,13 +5,31 @@
  * With Mode Off it simply runs its input model (a pack settling under gravity, say); the
  * other modes are the virtual press (Documentation/LoadTest.md): Compression, Tension,
  * Triaxial, Isotropic. Output port 0 is the model; output port 1 ("History") is the test
- * history as a vtkTable (one row every Sample Interval steps). Time contract (DESIGN.md): the filter publishes its own time
- * steps t_k = k * FrameInterval (s, model time since the start of this stage), k = 0 ..
- * NumberOfFrames. A request for a later time advances the cached state; a request for an
- * earlier time restores the nearest earlier in-memory checkpoint and replays (exact, the
- * solver is deterministic); a parameter change or a new input discards the cache. A frame
- * is the whole number of physics steps nearest to Frame Interval. Steps per Batch bounds
- * the physics steps between progress updates and status lines.
+ * history as a vtkTable (one row every Sample Interval steps).
+ *
+ * Time (DESIGN.md time contract, Documentation/LoadTest.md "Time"): the stage publishes
+ * frames, t_k = k x n x timestep (s, model time since the start of this stage), where a
+ * frame is n whole physics steps: n = round(Frame Interval / timestep), or Steps Per Batch
+ * when Frame Interval is 0 (the default), so a Play frame is a bounded amount of work.
+ * Published times are times the model reaches; until the stage has run once (the
+ * timestep is known then) it publishes k x Frame Interval, or only time 0. Number Of
+ * Frames 0 (the default) runs until the test finishes (Stage done), or with Mode Off
+ * until the model has settled (unbalanced force ratio below 0.01): the stage publishes
+ * the frames it estimates the test needs, more when it needs more, and ends its frames
+ * at the frame where it finished (a fixed Number Of Frames runs to its last frame). A
+ * request for a later time advances the cached state (from the latest
+ * in-memory checkpoint at or before it); an earlier time restores the nearest earlier
+ * checkpoint and replays (exact, the solver is deterministic); a parameter change or a
+ * new input discards the cache. Requests snap to the nearest frame. TimeStepsRevision
+ * counts changes of the published times (the client updates its time steps when it
+ * changes).
+ *
+ * Before it steps, a stage estimates its length (Estimated Steps) and how long computing
+ * it takes (Estimated Run Time, from a short measurement of this model's stepping speed)
+ * and says so in Output Messages, as a warning when it is long. Steps Per Batch bounds the
+ * steps between progress updates. A run can be stopped between batches: Ctrl-C (SIGINT)
+ * in pvpython or pvbatch, or AbortExecute; the output is then the last whole frame, and the
+ * stage stays there until a property changes (a second Ctrl-C ends pvpython as before).
  *
  * If the run goes unstable it stops with an error naming the cause and outputs the
  * last good state.
@@ -31,6 +49,15 @@
 #include "vtkMultiBlockDataSetAlgorithm.h"
 
 #include <string> // for the read-only strings
+
+class vtkMultiBlockDataSet;
+
+class vtkInformationVector;
+namespace dem
+{
+struct LoadTestSettings;
+enum class SolverDevice;
+}
 
 class ROCKDEMFILTERS_EXPORT vtkDEMLoadTest : public vtkMultiBlockDataSetAlgorithm
 {
@@ -125,19 +152,31 @@ public:
   ///@}
 
   ///@{
-  /// Model time between published time steps, s (> 0).
+  /// When the Checkpoint File holds a frame of this very run (its record names the same
+  /// input and settings, vtkDEMCheckpoint.h), take that frame from it instead of computing
+  /// it again (on by default: a reloaded state reopens its run without recomputing it).
+  vtkSetMacro(ResumeFromCheckpoint, int);
+  vtkGetMacro(ResumeFromCheckpoint, int);
+  vtkBooleanMacro(ResumeFromCheckpoint, int);
+  ///@}
+
+  ///@{
+  /// Model time between published time steps, s (>= 0); 0: Steps Per Batch steps per frame.
+  /// Snapped to a whole number of steps; shorter than one step is an error.
   vtkSetMacro(FrameInterval, double);
   vtkGetMacro(FrameInterval, double);
   ///@}
 
   ///@{
-  /// Number of frames after the start (>= 1).
+  /// Number of frames after the start, 0 .. dem::MaxFrames; 0: until the test finishes
+  /// (Mode Off: until the model has settled).
   vtkSetMacro(NumberOfFrames, int);
   vtkGetMacro(NumberOfFrames, int);
   ///@}
 
   ///@{
-  /// Upper bound on physics steps between progress updates (>= 1).
+  /// Upper bound on physics steps between progress updates (>= 1), and the steps of a
+  /// frame when Frame Interval is 0.
   vtkSetMacro(StepsPerBatch, int);
   vtkGetMacro(StepsPerBatch, int);
   ///@}
@@ -218,6 +257,33 @@ public:
   ///@}
 
   ///@{
+  /// Read-only estimate of the stage as set, made before it steps: physics steps from its
+  /// start to its end (0 when unknown: a consolidation, or settling with Number Of Frames
+  /// 0), and the seconds of computing they take at the stepping speed measured on this
+  /// model (particle-steps per second).
+  vtkGetMacro(EstimatedSteps, double);
+  vtkGetMacro(EstimatedRunTime, double);
+  vtkGetMacro(MeasuredThroughput, double);
+  ///@}
+
+  /// Read-only: steps in one frame of the current run (0 before it has run).
+  vtkGetMacro(FrameSteps, vtkIdType);
+
+  /// Read-only: 1 when the current frame is the end of the run (its last frame, or with
+  /// Number Of Frames 0 the frame where the test finished or the model settled).
+  vtkGetMacro(Finished, int);
+
+  /// Read-only: how many times the published time steps changed (the stage learns its
+  /// timestep, how many frames a test needs, and where it finished, as it runs).
+  int GetTimeStepsRevision();
+
+  /// Writes the test history of the current frame as CSV (the engine's columns with a
+  /// header; written to a temporary name and renamed). Returns 1 on success; 0 with the
+  /// reason in GetLastExportMessage() (also reported as an error).
+  int WriteHistory(const char* path);
+  const char* GetLastExportMessage() const { return this->LastExportMessage.c_str(); }
+
+  ///@{
   /// Read-only bond counts of the current model (reference guide "Reading damage").
   vtkGetMacro(NumberOfBonds, vtkIdType);       ///< Bonds: installed
   vtkGetMacro(NumberOfBrokenBonds, vtkIdType); ///< Broken Bonds
@@ -258,6 +324,7 @@ protected:
   char* CheckpointFile = nullptr;
   int CheckpointEvery = 0;
   int ContinueTest = 1;
+  int ResumeFromCheckpoint = 1;
 
   double CriticalTimestep;
   double Timestep;
@@ -285,12 +352,39 @@ protected:
   double PeakStress = 0.0;
   double InertialNumber = 0.0;
   double SuggestedStrainRate = 0.0;
+  double EstimatedSteps = 0.0;
+  double EstimatedRunTime = 0.0;
+  double MeasuredThroughput = 0.0;
+  vtkIdType FrameSteps = 0;
+  int Finished = 0;
+  std::string LastExportMessage;
 
 private:
   vtkDEMLoadTest(const vtkDEMLoadTest&) = delete;
   void operator=(const vtkDEMLoadTest&) = delete;
 
   void WriteCheckpoint();
+  /// Publishes the frames on every output (RequestInformation, and RequestData when the
+  /// stage learns more about its frames).
+  void PublishTimeSteps(vtkInformationVector* outputVector);
+  /// The frame a requested time asks for (snapped, clamped to the published frames).
+  int FrameOf(double time);
+  /// The press settings of this stage's properties (Mode, Axis, Confining Stress, ...).
+  dem::LoadTestSettings PressSettings() const;
+  /// The pipeline MTime is this filter's, or later when its last RequestData published
+  /// new times (then the information pass runs again downstream).
+  int ComputePipelineMTime(vtkInformation* request, vtkInformationVector** inInfoVec,
+    vtkInformationVector* outInfoVec, int requestFromOutputPort, vtkMTimeType* mtime) override;
+  /// The device GPU Solver asks for.
+  dem::SolverDevice Device() const;
+  /// The published frames, 0 .. LastFrame(); -1: nothing to publish (invalid settings).
+  int LastFrame();
+  /// Builds the cache from the input (the stage starts).
+  void Start(vtkMultiBlockDataSet* input);
+  /// The settings that shape the run, as text (part of the run's fingerprint).
+  std::string RunSettings();
+  /// Fingerprints the run and, when the Checkpoint File holds a frame of it, keeps that frame.
+  void ResumeFromCheckpointFile(vtkMultiBlockDataSet* input);
 
   struct vtkInternals;
   vtkInternals* Internals;

@@ -482,7 +482,10 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
     broken->SetValue(c, b.failure[c] != static_cast<std::uint8_t>(dem::BondFailure::Intact) ? 1 : 0);
   }
   cd->AddArray(broken);
-  cd->SetActiveScalars("FailureMode");
+  // FailureMode is not made the active cell scalars: the whole model (particles drawn as
+  // spheres) would then be coloured by a cell array that only the Bonds block has
+  // ("FailureMode (partial)"). Colouring bonds by it is a choice; its colour map is
+  // categorical (vtkSMDEMDefaults).
 }
 
 void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output)

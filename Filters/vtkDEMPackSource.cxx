@@ -9,6 +9,7 @@
 #include <vtkObjectFactory.h>
 
 #include <cstring>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkDEMPackSource);
@@ -88,6 +89,22 @@ void vtkDEMPackSource::CompactElements()
   this->Modified();
 }
 
+void vtkDEMPackSource::SetCommands(const char* commands)
+{
+  const std::string wanted = commands ? commands : "";
+  if (wanted == this->Commands)
+  {
+    return;
+  }
+  // A sequence that does not extend the one applied is replayed from a fresh pack.
+  if (wanted.compare(0, this->Commands.size(), this->Commands) != 0)
+  {
+    this->Internals->Valid = false;
+  }
+  this->Commands = wanted;
+  this->Modified();
+}
+
 void vtkDEMPackSource::ResetPack()
 {
   this->Commands.clear();
@@ -122,6 +139,14 @@ int vtkDEMPackSource::RequestData(
     params.fineZone.minimumSize = this->FineZoneMinimumSize;
     params.fineZone.maximumSize = this->FineZoneMaximumSize;
     dem::validate(params, configured.domain);
+    const std::size_t bad = this->Commands.find_first_not_of("AGC");
+    if (bad != std::string::npos)
+    {
+      throw dem::InputError("Commands = '" + this->Commands + "' has '" +
+        this->Commands.substr(bad, 1) + "' at position " + std::to_string(bad + 1) +
+        ": the recorded commands are 'A' (Add Elements), 'G' (Grow Elements) and "
+        "'C' (Compact Elements).");
+    }
     dem::CompactParameters compact;
     compact.targetPorosity = this->TargetPorosity;
     compact.stressCeiling = this->MaximumLockedInStress;

@@ -12,8 +12,10 @@
  * the pack; ResetPack discards the commands and rebuilds from scratch.
  *
  * The output is a pure function of the parameters and of the sequence of commands
- * pressed since the last reset: a parameter change rebuilds the pack from its seed and
- * replays the commands, so the same inputs always give the same pack.
+ * pressed since the last reset (Commands, e.g. "AGC"): a parameter change rebuilds the
+ * pack from its seed and replays the commands, so the same inputs always give the same
+ * pack. The sequence is recorded in the proxy (vtkSMDEMPackSourceProxy) so that a saved
+ * state rebuilds the same pack.
  */
 #ifndef vtkDEMPackSource_h
 #define vtkDEMPackSource_h
@@ -95,6 +97,15 @@ public:
 
   /// Number of Add/Grow commands applied since the last reset.
   int GetNumberOfCommands() const { return static_cast<int>(this->Commands.size()); }
+
+  ///@{
+  /// The commands pressed since the last reset, in order: 'A' Add Elements, 'G' Grow
+  /// Elements, 'C' Compact Elements (e.g. "AGC"). Setting it replays exactly those
+  /// presses on a fresh pack, which is how a saved state (.pvsm) rebuilds the same pack; any other character is
+  /// an error (reported when the pack is built).
+  void SetCommands(const char* commands);
+  const char* GetCommands() const { return this->Commands.c_str(); }
+  ///@}
 
 protected:
   vtkDEMPackSource();

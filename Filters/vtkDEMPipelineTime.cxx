@@ -8,14 +8,12 @@ namespace rockdem
 {
 void RequestLastUpstreamTime(vtkInformation* inInfo)
 {
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()) &&
+    inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()) > 0)
   {
-    const int n = inInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    const double* steps = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    if (n > 0)
-    {
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), steps[n - 1]);
-    }
+    // Not the last time step published: a stage that learns its frames as it runs (Number
+    // Of Frames 0) publishes only its start before it has run.
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), EndOfRun);
   }
   else
   {

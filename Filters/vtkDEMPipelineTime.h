@@ -10,10 +10,15 @@ class vtkInformation;
 
 namespace rockdem
 {
-/// Asks the upstream stage for a fixed time: its last published time step when it
-/// publishes any (a stepped model is consumed where its run ended), else no time at all.
-/// Changing this stage's time then never re-runs the stage before it (DESIGN.md, time
-/// contract). Call from RequestUpdateExtent with the input's information.
+/// A request for this time asks a stepping stage for the end of its run: its last frame,
+/// or with Number Of Frames 0 the frame where its test finishes (however many frames it
+/// has published so far). Other time-varying sources give their last time step.
+constexpr double EndOfRun = 1.0e300;
+
+/// Asks the upstream stage for a fixed time: the end of its run (EndOfRun) when it
+/// publishes time steps (a stepped model is consumed where its run ended), else no time
+/// at all. Changing this stage's time then never re-runs the stage before it (DESIGN.md,
+/// time contract). Call from RequestUpdateExtent with the input's information.
 void RequestLastUpstreamTime(vtkInformation* inputInfo);
 
 /// Stamps the output of a stage whose result does not depend on time with the time it

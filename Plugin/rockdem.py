@@ -11,18 +11,16 @@ from paraview import simple as _simple
 def show_particles(source, view=None, port=0, color_by="Radius"):
     """Show a RockDEM model's particles as spheres of their true radius.
 
-    Point Gaussian representation with the Sphere shader, scaled by the Radius point
-    array with no scale function, so the drawn radius equals the particle radius (m).
-    Returns the representation.
+    The "DEM Spheres" representation (RockDEM.xml: a Point Gaussian with the Sphere
+    shader, scaled by the Radius point array with no scale function), so the drawn radius
+    equals the particle radius (m); RockDEM models get it by default, this sets it again
+    for an output shown otherwise. Returns the representation.
     """
     view = view or _simple.GetActiveViewOrCreate("RenderView")
     display = _simple.Show(_simple.OutputPort(source, port), view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.ScaleByArray = 1
-    display.SetScaleArray = ["POINTS", "Radius"]
-    display.UseScaleFunction = 0
-    display.GaussianRadius = 1.0
+    # The plugin's representation: a Point Gaussian whose defaults draw a point as a sphere
+    # of its Radius (Sphere shader, scaled by Radius, no scale function, Gaussian Radius 1).
+    display.SetRepresentationType("DEM Spheres")
     if color_by:
         _simple.ColorBy(display, ("POINTS", color_by))
         display.RescaleTransferFunctionToDataRange(True, False)
@@ -79,6 +77,11 @@ def show_test_chart(load_test, view=None, shear_only=True):
     shear_only (default) a test that has a shear stage plots only its shear rows (Stage
     2, picked by an ExtractSelection with the row query ``Stage == 2``): a triaxial
     test's consolidation rows would otherwise run to the consolidation strain and back.
+    The query goes into the selection the way the GUI builds one (an AppendSelections
+    of the query): ParaView 5.11's Properties panel expects that form and crashes on an
+    Apply when an ExtractSelection's Selection is a bare selection source.
+    In the GUI the DEM Test dock (View > DEM Test) is the chart; this helper is for
+    pvbatch pictures.
     A test without shear rows (Isotropic) plots every row. The chart shows the test as
     far as it has been run (or to its last time step when it has not been run yet).
     Creates an XYChartView unless one is given; returns the view.
@@ -95,8 +98,7 @@ def show_test_chart(load_test, view=None, shear_only=True):
     if shear_only:
         stage = fetch_history(load_test).get("Stage")
         if stage is not None and (_np().asarray(stage) == STAGE_SHEAR).any():
-            query = _simple.SelectionQuerySource(ElementType="Row Data", QueryString="Stage == %d" % STAGE_SHEAR)
-            history = _simple.ExtractSelection(Input=history, Selection=query)
+            history = _simple.ExtractSelection(Input=history, Selection=_row_query("Stage == %d" % STAGE_SHEAR))
     display = _simple.Show(history, view, "XYChartRepresentation")
     display.UseIndexForXAxis = 0
     display.XArrayName = "Axial Strain (%)"
@@ -115,6 +117,14 @@ def show_test_chart(load_test, view=None, shear_only=True):
     return view
 
 
+def _row_query(query):
+    """A selection of table rows by a query, in the form the GUI builds: an AppendSelections
+    proxy whose one input is the SelectionQuerySource (pqSelectionInputWidget reads the
+    selection's Input property; a bare SelectionQuerySource has none)."""
+    source = _simple.SelectionQuerySource(ElementType="Row Data", QueryString=query)
+    return _simple.AppendSelections(Input=[source], Expression="s0", SelectionNames=["s0"])
+
+
 # ---------------------------------------------------------------------------------------
 # Analysis of load tests: history tables, elastic constants, the failure envelope.
 #
@@ -124,6 +134,11 @@ def show_test_chart(load_test, view=None, shear_only=True):
 
 #: Rows of the History table whose Stage is this are the shear (loading) stage.
 STAGE_SHEAR = 2
+
+#: A time that asks a DEM Load Test for the end of its run: its last frame, or with
+#: NumberOfFrames 0 the frame where the test finishes (``lt.UpdatePipeline(END_OF_RUN)``).
+#: Stages downstream of a load test (DEM Cement) read it there.
+END_OF_RUN = 1.0e300
 
 
 def _np():
@@ -282,9 +297,9 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, stop_below=
     NumberOfFrames are not given, 20 frames spanning 1.05 x MaxStrain / StrainRate of model
     time are used (plus as much again for a Triaxial consolidation).
 
-    The test is run to its last time step (UpdatePipeline at the last TimestepValues
-    entry); with stop_when_done (default) it is advanced frame by frame and stops at
-    the first frame where Stage is 'done'. progress, when given, is called with
+    The test is run to the end of its run (its last frame, or with NumberOfFrames 0 the
+    frame where it finishes); with stop_when_done (default) it is advanced frame by frame
+    and stops at the first frame where Stage is 'done'. progress, when given, is called with
     (frame, proxy) after each frame. With stop_below (a fraction, e.g. 0.5) it also stops
     at the first frame where the magnitude of Axial Stress has fallen below stop_below x
     the magnitude of Peak Stress: the specimen has failed, and the rest of Max Strain
@@ -303,12 +318,13 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, stop_below=
         props["FrameInterval"] = duration / frames
         props["NumberOfFrames"] = frames
     test = _filter("DEMLoadTest")(Input=model_source, Mode=mode, **props)
-    times = list(test.TimestepValues) or [0.0]
     if stop_when_done and mode != "Off":
-        for k, t in enumerate(times):
-            if k == 0 and len(times) > 1:
-                continue
-            test.UpdatePipeline(t)
+        # Frame by frame. The list is read again after every frame: once the stage has run
+        # its frames are the model's times, and with NumberOfFrames 0 it grows as needed.
+        test.UpdatePipeline(0.0)
+        k = 1
+        while k < len(test.TimestepValues or []):
+            test.UpdatePipeline(list(test.TimestepValues)[k])
             if progress:
                 progress(k, test)
             if read_only(test, "Stage") == "done":
@@ -316,10 +332,12 @@ def run_test(model_source, mode, stop_when_done=True, progress=None, stop_below=
             if stop_below is not None and abs(read_only(test, "AxialStress")) < \
                     stop_below * abs(read_only(test, "PeakStress")):
                 break
+            k += 1
     else:
-        test.UpdatePipeline(times[-1])
+        # The end of the run (with NumberOfFrames 0: where the test finishes).
+        test.UpdatePipeline(END_OF_RUN)
         if progress:
-            progress(len(times) - 1, test)
+            progress(len(test.TimestepValues or [0.0]) - 1, test)
     status = read_only(test, "Status")
     if test.GetDataInformation().GetNumberOfPoints() == 0:
         raise RuntimeError("DEM Load Test (%s) gave no output: %s" % (mode, status))
@@ -439,11 +457,15 @@ def compress_until_failure(model, fraction=0.6, **props):
     props = dict(props)
     props.setdefault("Gravity", [0.0, 0.0, 0.0])
     press = _filter("DEMLoadTest")(Input=model, Mode="Compression", **props)
-    for t in list(press.TimestepValues)[1:]:
-        press.UpdatePipeline(t)
+    # Frame by frame, the published times read again each time: once the stage has run
+    # they are the model's times (whole steps), not the k x Frame Interval known before.
+    k = 1
+    while k < len(press.TimestepValues or []):
+        press.UpdatePipeline(list(press.TimestepValues)[k])
         peak = read_only(press, "PeakStress")
         if peak > 0 and read_only(press, "AxialStress") < fraction * peak:
-            return press, t
+            return press, list(press.TimestepValues)[k]
+        k += 1
     return press, None
 
 

@@ -18,8 +18,12 @@ History table), stress_strain.png (the DEM Test chart), broken.png (the specimen
 test, spheres coloured by displacement, broken bonds in red), dfn.csv and dfn.png (the
 fracture discs exported by DEM Fractures To DFN just past the peak, one row per disc, and
 a picture of them inside the grains), specimen.rdem and specimen.history.csv (the state
-file of the tested specimen and its history), main_job.pvsm (the ParaView state of the
-pipeline), results.csv (one row: the measured values and timings).
+file of the tested specimen and its history: the compression's checkpoint),
+settle.rdem, consolidate.rdem, relax.rdem (the checkpoints of the other stepping stages),
+main_job.pvsm (the ParaView state: the whole pipeline in a layout of the 3D view and the
+test chart, at the end of the test; File > Load State reopens it in seconds, every stage
+taking its frames from its checkpoint), results.csv (one row: the measured values and
+timings).
 """
 import argparse
 import os
@@ -51,6 +55,27 @@ def plugin_path():
     if env:
         return env
     return os.path.join(SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so")
+
+
+def checkpoint(args, stage):
+    """The checkpoint file of a stepping stage, in the output folder."""
+    return os.path.join(args.output, stage + ".rdem")
+
+
+def save_state(path, view, chart, t_end):
+    """Saves the ParaView state with a layout (the 3D view beside the test chart, as
+    File > Load State shows it) at t_end, the end of the compression test."""
+    layout = CreateLayout("Main job")
+    AssignViewToLayout(view=view, layout=layout, hint=0)
+    layout.SplitHorizontal(0, 0.62)
+    AssignViewToLayout(view=chart, layout=layout, hint=2)
+    # The time the state opens at: the end of the test, the frame its checkpoint holds.
+    scene = GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+    scene.AnimationTime = t_end
+    for v in (view, chart):
+        v.ViewTime = t_end
+    SaveState(path)
 
 
 def main():
@@ -157,8 +182,10 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     print("Bonded Coordination: %.2f (%d bonds, Bond Range %g)" % (coordination, bonds, BOND_RANGE), flush=True)
     # 2. relax: walls at the box, no gravity: the stress Compact Elements locked in is
     # released before the tests (Press.md), and the timestep of the cemented model is known.
+    # Every stepping stage keeps its end in a checkpoint (.rdem): main_job.pvsm reopens the
+    # whole pipeline from them without computing the run again (Documentation/StateFile.md).
     relax = DEMLoadTest(Input=cement, Gravity=[0, 0, 0], FrameInterval=2e-4, NumberOfFrames=1,
-                        TimestepSafety=safety)
+                        TimestepSafety=safety, CheckpointFile=checkpoint(args, "relax"))
     relax.UpdatePipeline(relax.TimestepValues[-1])
     timestep = rockdem.read_only(relax, "Timestep")
     print("relaxed:      broken bonds %d of %d; timestep %.4g s" % (
@@ -178,7 +205,8 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     duration = 1.02 * MAX_STRAIN / rate
     result = rockdem.ucs_test(relax, StrainRate=rate, MaxStrain=MAX_STRAIN, TimestepSafety=safety,
                               FrameInterval=duration / frames, NumberOfFrames=frames,
-                              SampleInterval=50, HistoryFile=history_file, progress=progress)
+                              SampleInterval=50, HistoryFile=history_file, progress=progress,
+                              CheckpointFile=checkpoint(args, "specimen"))
     press = result["proxy"]
     lap("compression")
     # 4. direct tension of a twin: the same cemented, relaxed specimen pulled along Z.
@@ -186,13 +214,15 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     tduration = 1.02 * TENSION_MAX_STRAIN / tension_rate
     tension = rockdem.tension_test(relax, StrainRate=tension_rate, MaxStrain=TENSION_MAX_STRAIN, TimestepSafety=safety,
                                    FrameInterval=tduration / 20, NumberOfFrames=20, SampleInterval=20,
-                                   progress=progress, stop_below=0.5)
+                                   progress=progress, stop_below=0.5,
+                                   CheckpointFile=checkpoint(args, "tension"))
     sigma_t = tension["tensile_strength"]
     lap("tension")
-    # The tested specimen as a state file (Documentation/StateFile.md): the exact model at
-    # the end of the test (DEM State Reader reopens it), its history beside it.
-    state_file = os.path.join(args.output, "specimen.rdem")
-    SaveData(state_file, proxy=press)
+    # The tested specimen as a state file (Documentation/StateFile.md): the compression's
+    # checkpoint, the exact model at the end of the test (DEM State Reader reopens it), its
+    # history beside it.
+    state_file = checkpoint(args, "specimen")
+    t_end = press.GetDataInformation().DataInformation.GetTime()  # the frame where it finished
     print("state file: %s (%.1f MB)" % (state_file, os.path.getsize(state_file) / 1e6), flush=True)
     ucs, e_mod, nu = result["ucs"], result["E"], result["nu"]
     broken = result["broken_bonds"]
@@ -273,8 +303,10 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
               discs, rockdem.read_only(dfn, "TensileDiscs"), rockdem.read_only(dfn, "ShearDiscs"),
               largest, 100.0 * largest / pack.XDimension, 100.0 * share, dfn_broken, dfn_png, dfn_csv), flush=True)
     lap("DFN")
-    # The pipeline recipe: File > Load State (or LoadState in pvpython) rebuilds it.
-    SaveState(os.path.join(args.output, "main_job.pvsm"))
+    # The ParaView state: File > Load State (or LoadState in pvpython) rebuilds the pipeline,
+    # the 3D view beside the test chart, at the end of the test: the frame the compression's
+    # checkpoint holds, so nothing is computed again.
+    save_state(os.path.join(args.output, "main_job.pvsm"), view, chart, t_end)
 
     results = os.path.join(args.output, "results.csv")
     with open(results, "w") as f:

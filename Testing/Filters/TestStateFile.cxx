@@ -229,7 +229,9 @@ TEST(StateFileFilters, CheckpointThenReaderAndLoadTestContinueExactly)
   ASSERT_NE(atN.test.stage, dem::TestStage::Idle);
   EXPECT_EQ(dem::statetest::firstDifference(dem::readState(checkpoint), atN), "")
     << "the last frame is saved";
-  EXPECT_EQ(dir.Files(), (std::vector<std::string>{ "b.history.csv", "b.rdem" }));
+  // The state, its history and the run record beside them (which run wrote the
+  // checkpoint: Resume From Checkpoint reads it, vtkDEMCheckpoint.h).
+  EXPECT_EQ(dir.Files(), (std::vector<std::string>{ "b.history.csv", "b.rdem", "b.rdem.stage" }));
   // Changing where checkpoints go does not discard the run.
   b->SetCheckpointFile(dir.File("b2.rdem").c_str());
   b->UpdateTimeStep(n * 0.0005);

@@ -56,8 +56,14 @@ c.check(tf == t4 and (xf == x4).all() and (vf == v4).all(), "going forward to 0.
 
 # The animation scene drives it like any time-aware source.
 scene = GetAnimationScene()
-scene.UpdateAnimationUsingDataTimeSteps()
-c.check(abs(scene.EndTime - 0.4) < 1e-12, "the animation scene sees the stage's time range")
+c.check(scene.PlayMode == "Snap To TimeSteps", "a pipeline built by a script animates by its time steps")
+dt = rockdem.read_only(settle, "Timestep")
+published = list(settle.TimestepValues)
+c.check(abs(scene.EndTime - published[-1]) < 1e-15 and abs(published[-1] - 0.4) <= 0.5 * dt * 8,
+        "the animation scene ends at the last frame, %.9g s: 8 frames of whole steps (%d steps of %.4g s)" % (
+            scene.EndTime, rockdem.read_only(settle, "FrameSteps"), dt))
+c.check(all(abs(t - k * rockdem.read_only(settle, "FrameSteps") * dt) <= 1e-12 * t for k, t in enumerate(published)),
+        "published times are k x Frame Steps x Timestep (the model's times)")
 scene.AnimationTime = 0.2
 now = scene.TimeKeeper.Time
 settle.UpdatePipeline(now)
