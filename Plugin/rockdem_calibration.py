@@ -454,7 +454,13 @@ class _Bench:
         if rd.read_only(self.cement, "Bonds") == 0:
             raise RuntimeError("DEM Cement installed no bond: " + rd.read_only(self.cement, "LastMessage"))
         self.coordination = rd.read_only(self.cement, "BondedCoordination")
-        self.relax = rd._filter("DEMLoadTest")(Input=self.cement, Gravity=[0, 0, 0], FrameInterval=1e-6,
+        # about 100 steps of relaxation (no gravity, walls at the box): the estimate of
+        # the step is the mass-spring limit of the smallest grain on a bond of its size
+        r = 0.5 * self.recipe["minimum_size"]
+        mass = self.recipe["density"] * 4.0 / 3.0 * math.pi * r ** 3
+        stiffness = max(p["BondModulus"], self.pack_props["YoungsModulus"]) * math.pi * r / 2.0
+        step = self.recipe["timestep_safety"] * math.sqrt(mass / stiffness)
+        self.relax = rd._filter("DEMLoadTest")(Input=self.cement, Gravity=[0, 0, 0], FrameInterval=100 * step,
                                                NumberOfFrames=1, TimestepSafety=self.recipe["timestep_safety"])
         self.relax.UpdatePipeline(self.relax.TimestepValues[-1])
         self.timestep = rd.read_only(self.relax, "Timestep")
