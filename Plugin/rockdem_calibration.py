@@ -579,37 +579,52 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     strength_keys = [k for k in ("ucs", "tensile_strength") if k in target]
     env_keys = ["friction_angle"] if "friction_angle" in target else []
 
+    def stiffness_solvers():
+        lo, hi = BRACKETS["BondStiffnessRatio"]
+        return (SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None,
+                SecantSolver(target["poissons_ratio"], math.log(lo), math.log(hi), slope_guess=-0.05,
+                             max_step=math.log(3.0)) if "poissons_ratio" in target else None)
+
+    def stiffness_step(solvers, m, errs):
+        """Secant updates of Bond Modulus (E) and Bond Stiffness Ratio (nu) from one test;
+        True when both are within tolerance (or nu is unreachable)."""
+        e_solver, nu_solver = solvers
+        done = True
+        if e_solver:
+            if "youngs_modulus" not in errs:
+                raise RuntimeError("the compression gave no Young's modulus (too few history rows "
+                                   "below the peak): %s" % m)
+            if abs(errs["youngs_modulus"]) > tol["youngs_modulus"]:
+                e_solver.add(math.log(p["BondModulus"]), math.log(m["youngs_modulus"]))
+                p["BondModulus"] = math.exp(e_solver.next_x())
+                done = False
+        if nu_solver and "poissons_ratio" not in unreachable and "poissons_ratio" in errs and \
+                abs(errs["poissons_ratio"]) > tol["poissons_ratio"]:
+            nu_solver.add(math.log(p["BondStiffnessRatio"]), m["poissons_ratio"])
+            x = nu_solver.next_x()
+            if nu_solver.unreachable:
+                unreachable.add("poissons_ratio")
+            else:
+                p["BondStiffnessRatio"] = math.exp(x)
+                done = False
+        return done
+
     for _round in range(4):
         # ---- 1. stiffness ------------------------------------------------------------
         if stiff_keys:
-            e_solver = SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None
-            lo, hi = BRACKETS["BondStiffnessRatio"]
-            nu_solver = SecantSolver(target["poissons_ratio"], math.log(lo), math.log(hi), slope_guess=-0.05,
-                                     max_step=math.log(3.0)) if "poissons_ratio" in target else None
+            solvers = stiffness_solvers()
             while bench.tests < max_tests:
                 r = bench.compression(p, elastic_strain, elastic=True)
-                errs = report("stiffness", "elastic compression",
-                              {"youngs_modulus": r["E"], "poissons_ratio": r["nu"]})
-                if not (math.isfinite(r["E"]) and math.isfinite(r["nu"])):
-                    raise RuntimeError("the elastic compression gave no E / nu (too few history rows)")
-                done = True
-                if e_solver and abs(errs["youngs_modulus"]) > tol["youngs_modulus"]:
-                    e_solver.add(math.log(p["BondModulus"]), math.log(r["E"]))
-                    p["BondModulus"] = math.exp(e_solver.next_x())
-                    done = False
-                if nu_solver and "poissons_ratio" not in unreachable and \
-                        abs(errs["poissons_ratio"]) > tol["poissons_ratio"]:
-                    nu_solver.add(math.log(p["BondStiffnessRatio"]), r["nu"])
-                    x = nu_solver.next_x()
-                    if nu_solver.unreachable:
-                        unreachable.add("poissons_ratio")
-                    else:
-                        p["BondStiffnessRatio"] = math.exp(x)
-                        done = False
-                if done:
+                m = {"youngs_modulus": r["E"], "poissons_ratio": r["nu"]}
+                errs = report("stiffness", "elastic compression", m)
+                if stiffness_step(solvers, m, errs):
                     break
         # ---- 2. strength ---------------------------------------------------------------
+        # Every compression to failure measures E and nu too (the laboratory's values, in
+        # the window below the peak); they keep being matched here, jointly with the
+        # strengths (one secant per variable, all updated after each test).
         if strength_keys:
+            solvers = stiffness_solvers()
             s_solver = SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
             lo, hi = BRACKETS["CohesionRatio"]
             q_solver = SecantSolver(ucs_t / st_t, lo, hi, slope_guess=1.5, max_step=1.0) \
@@ -625,8 +640,11 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                     rt = bench.tension(p, min(0.01, max(0.002, 4.0 * st_t / (e_t or 1e300))))
                     m["tensile_strength"] = rt["tensile_strength"]
                     histories["tension"] = rt["history"]
-                errs = report("strength", "compression + %s tension" % target.get("tensile_test", "direct"), m)
+                errs = report("strength", "compression" + (" + %s tension" % target["tensile_test"] if st_t else ""),
+                              m)
                 done = True
+                if ucs_t:
+                    done = stiffness_step(solvers, m, errs)
                 if s_solver and abs(errs["ucs"]) > tol["ucs"]:
                     s_solver.add(math.log(p["TensileStrength"]), math.log(m["ucs"]))
                     p["TensileStrength"] = math.exp(s_solver.next_x())
