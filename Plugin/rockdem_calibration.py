@@ -359,6 +359,12 @@ def load_rock(name_or_path):
     return validate_target({k: v for k, v in target.items() if k in TARGET_KEYS})
 
 
+def _source(name):
+    """The constructor of a source loaded by the plugin (DEM Pack Source)."""
+    from paraview import servermanager, simple
+    return simple._create_func(name, servermanager.sources)
+
+
 def build_specimen(parameters, seed=None):
     """The calibrated specimen in ParaView: DEM Pack Source (compacted) -> DEM Cement, from
     a parameter file's path or its loaded dict. seed: another Random Seed for the pack and
@@ -368,7 +374,7 @@ def build_specimen(parameters, seed=None):
     pack_props, cement_props = dict(doc["pack"]), dict(doc["cement"])
     if seed is not None:
         pack_props["RandomSeed"] = cement_props["RandomSeed"] = int(seed)
-    pack = rockdem._filter("DEMPackSource")(**pack_props)
+    pack = _source("DEMPackSource")(**pack_props)
     pack.UpdatePipeline()
     pack.InvokeCommand("CompactElements")
     pack.UpdatePipeline()
@@ -420,14 +426,14 @@ class _Bench:
         if size is None:
             scale = (n / 10000.0) ** (1.0 / 3.0)
             size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
-        grain_e = float(target.get("youngs_modulus", 1e9))
+        grain_e = float(target.get("youngs_modulus", 1e9))  # tied to the Bond Modulus (_cemented)
         self.pack_props = {"XDimension": size[0], "YDimension": size[1], "ZDimension": size[2],
                            "InitialElements": n, "MinimumSize": recipe["minimum_size"],
                            "MaximumSize": recipe["maximum_size"], "TargetPorosity": recipe["target_porosity"],
                            "RandomSeed": recipe["seed"], "Density": recipe["density"],
                            "YoungsModulus": grain_e, "PoissonsRatio": 0.25,
                            "Friction": recipe["grain_friction"]}
-        self.pack = rockdem._filter("DEMPackSource")(**self.pack_props)
+        self.pack = _source("DEMPackSource")(**self.pack_props)
         self.pack.UpdatePipeline()
         if rockdem.read_only(self.pack, "NumberOfElements") == 0:
             raise RuntimeError("the pack could not be built: " + rockdem.read_only(self.pack, "LastMessage"))
@@ -438,6 +444,7 @@ class _Bench:
         self.cement = None
         self.relax = None
         self.tests = 0
+        self.packs = 1
         self.coordination = float("nan")
 
     def cement_props(self, p):
@@ -449,6 +456,19 @@ class _Bench:
             if proxy is not None:
                 self.simple.Delete(proxy)
         rd = self.rockdem
+        if self.pack_props["YoungsModulus"] != p["BondModulus"]:
+            # The grains' Young's Modulus is tied to the Bond Modulus: the platen contacts
+            # and the contacts in parallel with the bonds are grain contacts, so with the
+            # grains left soft the specimen's E barely follows the bonds (measured: 4
+            # decades of Bond Modulus moved E 6 x). With both moduli equal, the forces at
+            # a given strain scale with the modulus (Hertz and bond forces are linear in
+            # it), E is proportional to it and the secant converges in a step. The pack
+            # is compacted again for the new modulus (Compact Elements depends on it).
+            self.pack_props["YoungsModulus"] = p["BondModulus"]
+            self.pack.YoungsModulus = p["BondModulus"]
+            self.pack.UpdatePipeline()
+            self.packs += 1
+            self.porosity = rd.read_only(self.pack, "CurrentPorosity")
         self.cement = rd._filter("DEMCement")(Input=self.pack, **self.cement_props(p))
         self.cement.UpdatePipeline()
         if rd.read_only(self.cement, "Bonds") == 0:
@@ -705,7 +725,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
               "test": {"strain_per_step": recipe["strain_per_step"], "timestep_safety": recipe["timestep_safety"]},
               "measured": {k: v for k, v in measured.items() if k != "triaxial_peaks"},
               "errors": final_errors, "tests": bench.tests, "iterations": iterations,
-              "histories": histories, "porosity": bench.porosity, "elements": bench.elements,
+              "histories": histories, "packs": getattr(bench, "packs", 1), "porosity": bench.porosity, "elements": bench.elements,
               "bonded_coordination": bench.coordination, "target": target, "recipe": recipe,
               "seconds": time.time() - t_start}
     if output:
