@@ -292,7 +292,7 @@ def save_parameters(path, result):
     doc = {"format": FILE_FORMAT, "version": FILE_VERSION,
            "rock": result["target"].get("name", ""),
            "pack": result["pack"], "cement": result["cement"],
-           "test": result["test"],
+           "test": result["test"], "recipe": result["recipe"], "parameters": result["parameters"],
            "target": {k: v for k, v in result["target"].items() if k != "tolerances"},
            "tolerances": result["target"]["tolerances"],
            "measured": result["measured"], "errors": result["errors"],
@@ -323,6 +323,9 @@ def load_parameters(path):
     if doc.get("version") != FILE_VERSION:
         raise CalibrationError("%s: version = %r, this RockDEM reads version %d" % (path, doc.get("version"),
                                                                                   FILE_VERSION))
+    for key in ("recipe", "parameters", "target", "tolerances"):
+        if not isinstance(doc.get(key), dict):
+            raise CalibrationError("%s: '%s' must be a dict" % (path, key))
     for block, names in (("pack", PACK_PROPERTIES), ("cement", CEMENT_PROPERTIES)):
         props = doc.get(block)
         if not isinstance(props, dict):
@@ -413,7 +416,7 @@ def cement_properties(p, recipe):
 class _Bench:
     """One compacted pack (built once) and the tests on it."""
 
-    def __init__(self, target, recipe, log):
+    def __init__(self, target, recipe, log, grain_modulus=None):
         from paraview import simple
         import rockdem
         self.rockdem = rockdem
@@ -426,7 +429,8 @@ class _Bench:
         if size is None:
             scale = (n / 10000.0) ** (1.0 / 3.0)
             size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
-        grain_e = float(target.get("youngs_modulus", 1e9))  # tied to the Bond Modulus (_cemented)
+        # the grains' modulus is tied to the Bond Modulus (_cemented); start at the target E
+        grain_e = float(grain_modulus or target.get("youngs_modulus", 1e9))
         self.pack_props = {"XDimension": size[0], "YDimension": size[1], "ZDimension": size[2],
                            "InitialElements": n, "MinimumSize": recipe["minimum_size"],
                            "MaximumSize": recipe["maximum_size"], "TargetPorosity": recipe["target_porosity"],
@@ -531,6 +535,44 @@ class _Bench:
             if proxy is not None:
                 self.simple.Delete(proxy)
         self.relax = self.cement = self.pack = None
+
+
+def _ucs_strain(target):
+    """Max Strain of a compression to failure: 6 x UCS / E, in [0.005, 0.03]."""
+    return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
+
+
+def _tension_strain(target):
+    """Max Strain of a direct tension: 4 x sigma_t / E, in [0.002, 0.01]."""
+    return min(0.01, max(0.002, 4.0 * target.get("tensile_strength", 0.0) / target.get("youngs_modulus", 1e300)))
+
+
+def verify(parameters, seeds=(2, 3, 4), progress=None):
+    """The calibrated parameters on fresh specimens: for each Random Seed, a new pack of the
+    calibration's recipe, cemented with the calibrated parameters, tested as in the
+    strength stage (unconfined compression and the target's tensile test). Returns a list
+    of {seed, measured, errors} (errors against the calibration's target)."""
+    doc = load_parameters(parameters) if isinstance(parameters, str) else parameters
+    target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
+    out = []
+    for seed in seeds:
+        recipe = validate_recipe(dict(doc["recipe"], seed=int(seed)))
+        bench = _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+        try:
+            m = {}
+            if "ucs" in target or "youngs_modulus" in target or "poissons_ratio" in target:
+                rc = bench.compression(doc["parameters"], _ucs_strain(target))
+                m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
+            if "tensile_strength" in target:
+                m["tensile_strength"] = bench.tension(doc["parameters"], _tension_strain(target))["tensile_strength"]
+            rec = {"seed": int(seed), "measured": m, "errors": _errors(target, m),
+                   "bonded_coordination": bench.coordination, "porosity": bench.porosity}
+        finally:
+            bench.close()
+        out.append(rec)
+        if progress:
+            progress(rec)
+    return out
 
 
 def calibrate(target, recipe=None, progress=None, output=None, bench=None):
@@ -650,14 +692,14 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             q_solver = SecantSolver(ucs_t / st_t, lo, hi, slope_guess=1.5, max_step=1.0) \
                 if (ucs_t and st_t) else None
             while bench.tests < max_tests:
-                ucs_strain = min(0.03, max(0.005, 6.0 * (ucs_t or 0) / (e_t or 1e300)))
+                ucs_strain = _ucs_strain(target)
                 m = {}
                 if ucs_t:
                     rc = bench.compression(p, ucs_strain)
                     m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
                     histories["ucs"] = rc["history"]
                 if st_t:
-                    rt = bench.tension(p, min(0.01, max(0.002, 4.0 * st_t / (e_t or 1e300))))
+                    rt = bench.tension(p, _tension_strain(target))
                     m["tensile_strength"] = rt["tensile_strength"]
                     histories["tension"] = rt["history"]
                 errs = report("strength", "compression" + (" + %s tension" % target["tensile_test"] if st_t else ""),

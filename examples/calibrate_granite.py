@@ -1,7 +1,7 @@
 """Calibrate RockDEM's cement to a named rock (pvpython or pvbatch):
 
     pvpython examples/calibrate_granite.py [--rock lac_du_bonnet_granite] [--elements 600]
-        [--max-tests 30] [--only E,nu,UCS,sigma_t,phi] [--output results/calibration]
+        [--max-tests 30] [--only E,nu,UCS,sigma_t,phi] [--verify 2,3,4] [--output results/calibration]
 
 Loads the preset Data/rocks/<rock>.json (Lac du Bonnet granite by default; also
 berea_sandstone), runs rockdem.calibrate on one compacted specimen of the given size and
@@ -31,6 +31,8 @@ def main():
     parser.add_argument("--max-tests", type=int, default=30, help="specimen tests in all")
     parser.add_argument("--only", default="E,nu,UCS,sigma_t,phi",
                         help="targets to calibrate, comma separated, of E, nu, UCS, sigma_t, phi")
+    parser.add_argument("--verify", default="",
+                        help="seeds of fresh specimens to test the calibrated parameters on, e.g. 2,3,4")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results", "calibration"))
     args = parser.parse_args()
     plugin = os.environ.get("ROCKDEM_PLUGIN") or os.path.join(
@@ -77,6 +79,16 @@ def main():
                   % (key, target[key], result["measured"].get(key, float("nan")),
                      result["errors"].get(key, float("nan")), target["tolerances"][key]))
     print("parameters: %s" % os.path.join(args.output, "parameters.json"))
+    if args.verify:
+        seeds = [int(x) for x in args.verify.split(",")]
+        rows = rockdem.verify(os.path.join(args.output, "parameters.json"), seeds)
+        for row in rows:
+            print("fresh specimen, seed %d (coordination %.2f): %s" % (
+                row["seed"], row["bonded_coordination"],
+                ", ".join("%s %.4g (%+.3f)" % (k, row["measured"][k], row["errors"][k]) for k in row["errors"])))
+        for key in rows[0]["errors"]:
+            errs = [r["errors"][key] for r in rows]
+            print("  %-17s error over seeds %s: from %+.3f to %+.3f" % (key, seeds, min(errs), max(errs)))
 
 
 if __name__ == "__main__":
