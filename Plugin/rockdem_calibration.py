@@ -494,6 +494,9 @@ class _Bench:
         rate = self.recipe["strain_per_step"] / self.timestep
         frames = 20
         duration = 1.02 * max_strain / rate
+        if mode == "Triaxial":
+            # the consolidation comes first (rockdem.run_test's allowance: as much again)
+            frames, duration = 40, 2.0 * duration
         props = dict(StrainRate=rate, MaxStrain=max_strain, TimestepSafety=self.recipe["timestep_safety"],
                      FrameInterval=duration / frames, NumberOfFrames=frames, SampleInterval=10,
                      stop_below=stop_below)
@@ -523,11 +526,28 @@ class _Bench:
         return result
 
     def triaxial(self, p, confining, max_strain):
+        """Peaks at each confining stress on one cemented model and their Mohr-Coulomb fit.
+        A confining stress of 0 is an unconfined compression (DEM Load Test's Triaxial
+        mode needs a Confining Stress > 0)."""
+        rd = self.rockdem
         model = self._cemented(p)
-        self.tests += len(confining)
-        props = self._press("Triaxial", max_strain, None)
-        props.pop("stop_below")
-        results, (cohesion, phi) = self.rockdem.triaxial_series(model, confining, **props)
+        results = []
+        for s3 in confining:
+            self.tests += 1
+            if s3 == 0:
+                r = rd.ucs_test(model, **self._press("Compression", max_strain, 0.7))
+                test, history, peak = r["proxy"], r["history"], r["ucs"]
+            else:
+                test, history = rd.run_test(model, "Triaxial", ConfiningStress=float(s3),
+                                            **self._press("Triaxial", max_strain, 0.8))
+                peak = rd.peak_values(history)[0]
+            results.append({"confining": float(s3), "peak_axial": peak, "history": history})
+            self.simple.Delete(test)
+        try:
+            cohesion, phi = rd.fit_mohr_coulomb([r["confining"] for r in results],
+                                                [r["peak_axial"] for r in results])
+        except ValueError:
+            cohesion, phi = float("nan"), float("nan")
         return results, cohesion, phi
 
     def close(self):
