@@ -886,6 +886,10 @@ def write_outputs(result, folder):
     if "tensile_strength" in m:
         ax.plot([-m["tensile_strength"] / 1e6], [0], "r^", label="calibrated tensile strength")
     tri = result["histories"].get("triaxial")
+    if tri and math.isfinite(m.get("friction_angle", float("nan"))) and math.isfinite(m.get("cohesion", float("nan"))):
+        a, b = _mohr_coulomb_line_from({"friction_angle": m["friction_angle"], "cohesion": m["cohesion"]})
+        ax.plot([x / 1e6 for x in xs], [(a + b * x) / 1e6 for x in xs], "r-", lw=0.8,
+                label="calibrated envelope (fit)")
     if tri:
         ax.plot([r["confining"] / 1e6 for r in tri], [r["peak_axial"] / 1e6 for r in tri], "ro",
                 label="calibrated triaxial peaks (phi %.1f deg)" % m.get("friction_angle", float("nan")))
