@@ -129,10 +129,6 @@ def validate_target(target):
                                 "friction_angle")):
         raise CalibrationError("target has nothing to calibrate: give at least one of "
                                "youngs_modulus, poissons_ratio, ucs, tensile_strength, friction_angle")
-    if "ucs" in t and "tensile_strength" not in t or "tensile_strength" in t and "ucs" not in t:
-        # the strength stage sets the bond strength scale from UCS and the Cohesion/Tensile
-        # ratio from UCS / sigma_t: the ratio alone is not enough to set both.
-        pass
     tol = dict(DEFAULT_TOLERANCES)
     for key, value in (t.get("tolerances") or {}).items():
         if key not in DEFAULT_TOLERANCES:
@@ -751,7 +747,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             f_solver = SecantSolver(target["friction_angle"], lo, hi, slope_guess=0.5, max_step=20.0)
             confining = list(target["confining_stresses"])
             while bench.tests + len(confining) <= max_tests:
-                results, coh, phi = bench.triaxial(p, confining, min(0.03, max(0.005, 8.0 * ucs_t / e_t)))
+                results, coh, phi = bench.triaxial(p, confining, min(0.03, max(0.005, 8.0 * (ucs_t or 0.0) / (e_t or 1e300))))
                 histories["triaxial"] = results
                 errs = report("envelope", "triaxial x %d" % len(confining),
                               {"friction_angle": phi, "cohesion": coh,

@@ -150,6 +150,10 @@ c.check(not res["converged"] and res["unreachable"] == ["tensile_strength"] and 
 c.check(abs(res["errors"]["ucs"]) <= 0.05 and res["parameters"]["CohesionRatio"] == cal.BRACKETS["CohesionRatio"][1],
         "unreachable ratio: UCS still matched, Cohesion / Tensile at the bracket's end %g"
         % res["parameters"]["CohesionRatio"])
+# a friction angle alone (no E, no UCS) is calibrated too
+res = cal.calibrate({"friction_angle": 40.0, "confining_stresses": [0.0, 5e6, 1e7]}, {}, bench=SyntheticBench())
+c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
+        "friction angle alone: converged, error %+.3g deg after %d tests" % (res["errors"]["friction_angle"], res["tests"]))
 # a test budget that is too small stops and says so
 res = cal.calibrate(target, {"max_tests": 3}, bench=SyntheticBench())
 c.check(not res["converged"] and res["tests"] <= 3 and res["not_within"],
