@@ -15,7 +15,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkSmartPointer.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <cstdint>
 #include <exception>
@@ -71,9 +70,7 @@ int vtkDEMCement::RequestInformation(
 {
   // An instantaneous stage: the upstream times (copied here by the pipeline) are not
   // ours to publish. ParaView then leaves the upstream stage's times out of the animation.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
   return 1;
 }
 

@@ -58,6 +58,7 @@ vtkDEMFracturesToDFN::vtkDEMFracturesToDFN()
   , MinimumPlanarity(0.8)
   , ClusterDistance(0.0)
   , MinimumFill(0.0)
+  , OrientationTolerance(dem::FractureParameters().orientationTolerance)
   , DiscSides(24)
   , NumberOfBrokenBonds(0)
   , NumberOfClusters(0)
@@ -117,6 +118,7 @@ int vtkDEMFracturesToDFN::RequestData(
     params.minimumPlanarity = this->MinimumPlanarity;
     params.clusterDistance = this->ClusterDistance;
     params.minimumFill = this->MinimumFill;
+    params.orientationTolerance = this->OrientationTolerance;
     params.discSides = this->DiscSides;
     dem::validate(params);
     const dem::Model model = rockdem::MultiBlockToModel(input);
@@ -242,6 +244,7 @@ void vtkDEMFracturesToDFN::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumPlanarity: " << this->MinimumPlanarity << "\n";
   os << indent << "ClusterDistance: " << this->ClusterDistance << " m\n";
   os << indent << "MinimumFill: " << this->MinimumFill << "\n";
+  os << indent << "OrientationTolerance: " << this->OrientationTolerance << " degrees\n";
   os << indent << "DiscSides: " << this->DiscSides << "\n";
   os << indent << "BrokenBonds: " << this->NumberOfBrokenBonds << "\n";
   os << indent << "Clusters: " << this->NumberOfClusters << "\n";

@@ -66,6 +66,13 @@ public:
   ///@}
 
   ///@{
+  /// Planes grown through a non-planar cluster take cracks whose local plane is within
+  /// this angle of the plane's running normal, degrees, [0, 90); 0 = off (dem::FractureParameters).
+  vtkSetMacro(OrientationTolerance, double);
+  vtkGetMacro(OrientationTolerance, double);
+  ///@}
+
+  ///@{
   /// Vertices of each disc polygon (>= 3).
   vtkSetMacro(DiscSides, int);
   vtkGetMacro(DiscSides, int);
@@ -98,6 +105,7 @@ protected:
   double MinimumPlanarity;
   double ClusterDistance;
   double MinimumFill;
+  double OrientationTolerance;
   int DiscSides;
 
   // Read-only values are results, not parameters: setting them must not call Modified().

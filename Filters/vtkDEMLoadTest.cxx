@@ -27,6 +27,7 @@
 
 #include <dlfcn.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -477,6 +478,7 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   press.maxStrain = this->MaxStrain;
   press.servoAlpha = this->ServoAlpha;
   press.sampleInterval = this->SampleInterval;
+  press.gripLength = this->GripLength;
   return press;
 }
 
@@ -819,11 +821,11 @@ int vtkDEMLoadTest::RequestData(
   int frameAsked = 0;
   try
   {
-    if (this->Mode < MODE_OFF || this->Mode > MODE_ISOTROPIC)
+    if (this->Mode < MODE_OFF || this->Mode > MODE_BRAZILIAN)
     {
       throw dem::InputError("Mode = " + std::to_string(this->Mode) +
         " is out of range: valid modes are Off (0), Compression (1), Tension (2), Triaxial (3), "
-        "Isotropic (4).");
+        "Isotropic (4), Brazilian (5).");
     }
     const dem::LoadTestSettings press = this->PressSettings();
     dem::validate(press);
@@ -1077,6 +1079,13 @@ int vtkDEMLoadTest::RequestData(
   this->LateralStress = me.lateralStress;
   this->DeviatorStress = me.deviatorStress;
   this->PeakStress = in.Model.test.peakStress;
+  const dem::TestMode testMode = in.Model.test.settings.mode;
+  this->BrazilianStrength = testMode == dem::TestMode::Brazilian ? in.Model.test.peakStress : 0.0;
+  this->TensileStrength = testMode == dem::TestMode::Tension ? std::abs(in.Model.test.peakStress) : 0.0;
+  const std::array<double, 2> disc = testMode == dem::TestMode::Brazilian
+    ? dem::brazilianDisc(in.Model) : std::array<double, 2>{ { 0.0, 0.0 } };
+  this->DiscDiameter = disc[0];
+  this->DiscThickness = disc[1];
   this->InertialNumber = me.inertialNumber;
   this->SuggestedStrainRate = me.suggestedStrainRate;
   // The frame's time: a whole number of steps since the start of the stage.
@@ -1168,6 +1177,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxStrain: " << this->MaxStrain << "\n";
   os << indent << "ServoAlpha: " << this->ServoAlpha << "\n";
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
+  os << indent << "GripLength: " << this->GripLength << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
   os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";
   os << indent << "CheckpointEvery: " << this->CheckpointEvery << "\n";

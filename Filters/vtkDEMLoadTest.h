@@ -72,7 +72,8 @@ public:
     MODE_COMPRESSION = 1,
     MODE_TENSION = 2,
     MODE_TRIAXIAL = 3,
-    MODE_ISOTROPIC = 4
+    MODE_ISOTROPIC = 4,
+    MODE_BRAZILIAN = 5
   };
   enum ContactLawType
   {
@@ -120,6 +121,13 @@ public:
   /// Physics steps between history rows (>= 1).
   vtkSetMacro(SampleInterval, int);
   vtkGetMacro(SampleInterval, int);
+  ///@}
+
+  ///@{
+  /// Tension: the particles within this many largest particle diameters of each platen
+  /// are held to it (the grips), dimensionless, > 0 (default 1).
+  vtkSetMacro(GripLength, double);
+  vtkGetMacro(GripLength, double);
   ///@}
 
   ///@{
@@ -252,6 +260,13 @@ public:
   vtkGetMacro(LateralStress, double);       ///< Pa
   vtkGetMacro(DeviatorStress, double);      ///< Pa
   vtkGetMacro(PeakStress, double);          ///< Pa
+  /// Pa: Peak Stress of a Brazilian test, 2 P / (pi D t) at the peak load (0 in other modes).
+  vtkGetMacro(BrazilianStrength, double);
+  /// Pa: the largest pull of a Tension test (magnitude of Peak Stress; 0 in other modes).
+  vtkGetMacro(TensileStrength, double);
+  /// m: Mode Brazilian, the disc's diameter D and thickness t in 2 P / (pi D t) (0 in other modes).
+  vtkGetMacro(DiscDiameter, double);
+  vtkGetMacro(DiscThickness, double);
   vtkGetMacro(InertialNumber, double);      ///< -
   vtkGetMacro(SuggestedStrainRate, double); ///< 1/s
   ///@}
@@ -320,6 +335,7 @@ protected:
   double MaxStrain = 0.02;
   double ServoAlpha = 0.5;
   int SampleInterval = 100;
+  double GripLength = 1.0;
   char* HistoryFile = nullptr;
   char* CheckpointFile = nullptr;
   int CheckpointEvery = 0;
@@ -350,6 +366,10 @@ protected:
   double LateralStress = 0.0;
   double DeviatorStress = 0.0;
   double PeakStress = 0.0;
+  double BrazilianStrength = 0.0;
+  double TensileStrength = 0.0;
+  double DiscDiameter = 0.0;
+  double DiscThickness = 0.0;
   double InertialNumber = 0.0;
   double SuggestedStrainRate = 0.0;
   double EstimatedSteps = 0.0;

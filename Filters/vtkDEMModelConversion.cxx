@@ -162,7 +162,7 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
   const dem::LoadTestSettings& s = t.settings;
   AddField(fd, "TestSettings", { static_cast<double>(s.mode), static_cast<double>(s.axis),
     s.confiningStress, s.strainRate, s.maxStrain, s.servoAlpha, static_cast<double>(s.sampleInterval),
-    s.settleTolerance });
+    s.settleTolerance, s.gripLength });
   AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
     t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
     static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample), t.initialSpread[0],
@@ -182,20 +182,21 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
 {
   auto value = [&](const char* name, int k, int n) { return Field(fd, name, k, n); };
   dem::LoadTestSettings& s = t.settings;
-  const double mode = value("TestSettings", 0, 8);
-  if (!(mode >= 0 && mode <= 4))
+  const double mode = value("TestSettings", 0, 9);
+  if (!(mode >= 0 && mode <= 5))
   {
     throw dem::InputError("RockDEM model array 'TestSettings' has an unknown mode " +
       dem::formatValue(mode) + ".");
   }
   s.mode = static_cast<dem::TestMode>(static_cast<int>(mode));
-  s.axis = static_cast<int>(value("TestSettings", 1, 8));
-  s.confiningStress = value("TestSettings", 2, 8);
-  s.strainRate = value("TestSettings", 3, 8);
-  s.maxStrain = value("TestSettings", 4, 8);
-  s.servoAlpha = value("TestSettings", 5, 8);
-  s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 8));
-  s.settleTolerance = value("TestSettings", 7, 8);
+  s.axis = static_cast<int>(value("TestSettings", 1, 9));
+  s.confiningStress = value("TestSettings", 2, 9);
+  s.strainRate = value("TestSettings", 3, 9);
+  s.maxStrain = value("TestSettings", 4, 9);
+  s.servoAlpha = value("TestSettings", 5, 9);
+  s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 9));
+  s.settleTolerance = value("TestSettings", 7, 9);
+  s.gripLength = value("TestSettings", 8, 9);
   const double stage = value("TestState", 0, 12);
   if (!(stage >= 0 && stage <= 3))
   {

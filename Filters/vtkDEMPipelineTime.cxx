@@ -21,6 +21,12 @@ void RequestLastUpstreamTime(vtkInformation* inInfo)
   }
 }
 
+void PublishNoTimeSteps(vtkInformation* outInfo)
+{
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+}
+
 void StampRequestedTime(vtkInformation* outInfo, vtkDataObject* output)
 {
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))

@@ -21,6 +21,12 @@ constexpr double EndOfRun = 1.0e300;
 /// time contract). Call from RequestUpdateExtent with the input's information.
 void RequestLastUpstreamTime(vtkInformation* inputInfo);
 
+/// Removes the time steps and range the pipeline copied from upstream into an
+/// instantaneous stage's output information (DEM Cement, DEM Seed Fractures, DEM
+/// Specimen): they are not its to publish, and ParaView then leaves the upstream stage's
+/// times out of the animation. Call from RequestInformation with the output's information.
+void PublishNoTimeSteps(vtkInformation* outputInfo);
+
 /// Stamps the output of a stage whose result does not depend on time with the time it
 /// was asked for (DATA_TIME_STEP = the output's UPDATE_TIME_STEP), or removes the stamp
 /// when no time was asked for, so that the pipeline sees the request satisfied (a shallow

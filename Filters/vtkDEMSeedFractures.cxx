@@ -15,7 +15,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <exception>
 #include <vector>
@@ -42,9 +41,7 @@ int vtkDEMSeedFractures::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // An instantaneous stage: the upstream times are not ours to publish.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
   return 1;
 }
 

@@ -305,11 +305,11 @@ void pqRockDEMTestDock::refresh()
     return;
   }
   proxy->UpdatePropertyInformation();
-  static const char* const modeNames[] = { "Off", "Compression", "Tension", "Triaxial", "Isotropic" };
+  static const char* const modeNames[] = { "Off", "Compression", "Tension", "Triaxial", "Isotropic", "Brazilian" };
   const int m = vtkSMPropertyHelper(proxy, "Mode").GetAsInt();
   this->ModelLabel->setText(QString("%1 (Mode %2)")
                               .arg(this->Followed->getSMName())
-                              .arg(m >= 0 && m <= 4 ? QString(modeNames[m]) : QString::number(m)));
+                              .arg(m >= 0 && m <= 5 ? QString(modeNames[m]) : QString::number(m)));
   this->StageLabel->setText(
     pqRockDEMReadOnlyWidget::text(proxy->GetProperty("Stage")));
   this->PeakLabel->setText(

@@ -290,7 +290,7 @@ def _filter(name):
 def run_test(model_source, mode, stop_when_done=True, progress=None, stop_below=None, **props):
     """Create a DEM Load Test on model_source, run it, and return (proxy, history dict).
 
-    mode: 'Off', 'Compression', 'Tension', 'Triaxial' or 'Isotropic'. props are DEM Load
+    mode: 'Off', 'Compression', 'Tension', 'Triaxial', 'Isotropic' or 'Brazilian'. props are DEM Load
     Test properties (StrainRate, MaxStrain, ConfiningStress, FrameInterval,
     NumberOfFrames, SampleInterval, TimestepSafety, Gravity, ...). For a press mode the
     Gravity defaults to zero (a laboratory press test has none). When FrameInterval and
@@ -366,6 +366,30 @@ def tension_test(cemented_source, axis="Z", **props):
     pull = float(-np.min(history["Axial Stress (Pa)"][rows])) if rows.any() else 0.0
     peak = abs(float(read_only(test, "PeakStress")))
     return {"proxy": test, "history": history, "tensile_strength": max(pull, peak),
+            "broken_bonds": int(read_only(test, "BrokenBonds")), "bonds": int(read_only(test, "Bonds"))}
+
+
+def brazilian_test(cemented_disc, axis="Y", **props):
+    """Brazilian (indirect tensile) test of a cemented disc (DEM Specimen, Shape Disc):
+    two flat platens squeeze it along ``axis`` (across the disc's axis). Returns a dict with
+    brazilian_strength (Pa, 2 P / (pi D t) at the peak load), diameter and thickness (m),
+    load (N) and displacement (m) arrays of the shearing rows, the broken bonds, the proxy
+    and the history. props go to run_test (StrainRate, MaxStrain, ...; stop_below=0.5
+    stops once the load has fallen below half its peak)."""
+    np = _np()
+    props.setdefault("stop_below", 0.5)
+    test, history = run_test(cemented_disc, "Brazilian", Axis=axis, **props)
+    rows = _shear_rows(history)
+    # The history's Axial Stress is the Brazilian stress 2 P / (pi D t) and its strain the
+    # platen displacement over D (Documentation/Press.md, "Brazilian test").
+    strain = history["Strain %s" % axis][rows]
+    stress = history["Axial Stress (Pa)"][rows]
+    diameter = float(read_only(test, "DiscDiameter"))
+    thickness = float(read_only(test, "DiscThickness"))
+    load = stress * np.pi * diameter * thickness / 2.0
+    return {"proxy": test, "history": history,
+            "brazilian_strength": float(read_only(test, "BrazilianStrength")),
+            "diameter": diameter, "thickness": thickness, "load": load, "displacement": strain * diameter,
             "broken_bonds": int(read_only(test, "BrokenBonds")), "bonds": int(read_only(test, "Bonds"))}
 
 
@@ -467,6 +491,34 @@ def compress_until_failure(model, fraction=0.6, **props):
             return press, list(press.TimestepValues)[k]
         k += 1
     return press, None
+
+
+def specimen(model, shape="Cylinder", axis="Z", diameter=None, length=None, size=None, center=None,
+             **props):
+    """A DEM Specimen carved out of a dense pack (Documentation/Specimens.md).
+
+    shape: 'Box' (give ``size``, m, 3 edge lengths), 'Cylinder' or 'Disc' (give
+    ``diameter`` and ``length``, m; a disc's length is its thickness, no more than the
+    diameter; in a 2D section the slab is the thickness and length is not used). axis: the
+    cylinder or disc axis ('X', 'Y', 'Z'). center: the specimen's centre (m); default the
+    centre of the model box. Returns the proxy (output: the carved model; read-only
+    NumberOfParticles, RemovedParticles, SpecimenPorosity, LastMessage).
+    """
+    props = dict(props)
+    props["Shape"] = shape
+    props["Axis"] = axis
+    if diameter is not None:
+        props["Diameter"] = diameter
+    if length is not None:
+        props["Length"] = length
+    if size is not None:
+        props["Size"] = list(size)
+    if center is not None:
+        props["CenterOnModel"] = 0
+        props["Center"] = list(center)
+    proxy = _filter("DEMSpecimen")(Input=model, **props)
+    proxy.UpdatePipeline()
+    return proxy
 
 
 def section(model, orientation="XY", origin=None, normal=None, **props):

@@ -38,15 +38,16 @@ SOURCE_DIR = os.path.dirname(HERE)
 
 
 # Material and test settings (Documentation/Workflow.md and Rock.md say why).
-MODULUS = 1e8          # Pa: grain Young's modulus and Bond Modulus (soft: a long timestep)
+MODULUS = 1e10         # Pa: grain Young's modulus and Bond Modulus (bond strength / modulus 1e-4, as in rock)
 TARGET_POROSITY = 0.37  # Compact Elements' target (a walled specimen this small jams near 0.39)
 BOND_RANGE = 1.4       # x (rA + rB): bonded coordination about 11 (Scholtes & Donze 2013)
-MOMENT_CONTRIBUTION = 1.0  # beta: the full bond moments in the failure stresses (Potyondy & Cundall)
-TENSILE = 3e5          # Pa: bond tensile strength (Rock.md: the specimen fails near 2.3 % strain)
-COHESION = 6e5         # Pa: bond cohesion
-STRAIN_PER_STEP = 1e-6  # platen strain per timestep (sets the strain rate; Rock.md)
-MAX_STRAIN = 0.03      # compression: past the peak (about 2.3 %) and its fall to 70 %
-TENSION_MAX_STRAIN = 0.005  # direct tension: the peak is near 0.16 %; stops once fallen to half
+MOMENT_CONTRIBUTION = 0.5  # beta: half the bond moments in the failure stresses (Rock.md: UCS / sigma_t > 10)
+TENSILE = 1e6          # Pa: bond tensile strength
+COHESION = 4e6         # Pa: bond cohesion
+STRAIN_PER_STEP = 1e-7  # platen strain per timestep in compression (sets the strain rate; Rock.md)
+TENSION_STRAIN_PER_STEP = 1e-8  # direct tension, slower: its peak comes at about 7e-5 strain (Rock.md)
+MAX_STRAIN = 0.004     # compression: past the peak (about 0.24 %) and its fall to 70 % (0.27 %)
+TENSION_MAX_STRAIN = 0.0003  # direct tension: stops once fallen to half
 
 
 def plugin_path():
@@ -105,7 +106,7 @@ def main():
         print("[%s: %.1f s]" % (stage, now - clock[0]), flush=True)
         clock[0] = now
 
-    # Soft grains (E 1e8 Pa) keep the timestep long; see Documentation/Workflow.md.
+    # Rock-like stiffness (E 1e10 Pa, bond strength / modulus 1e-4); see Documentation/Rock.md.
     pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
                          InitialElements=args.elements, MinimumSize=0.00078, MaximumSize=0.00156,
                          TargetPorosity=TARGET_POROSITY, RandomSeed=1,
@@ -209,8 +210,9 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     press = result["proxy"]
     lap("compression")
     # 4. direct tension of a twin: the same cemented, relaxed specimen pulled along Z.
-    tduration = 1.02 * TENSION_MAX_STRAIN / rate
-    tension = rockdem.tension_test(relax, StrainRate=rate, MaxStrain=TENSION_MAX_STRAIN, TimestepSafety=safety,
+    tension_rate = TENSION_STRAIN_PER_STEP / timestep
+    tduration = 1.02 * TENSION_MAX_STRAIN / tension_rate
+    tension = rockdem.tension_test(relax, StrainRate=tension_rate, MaxStrain=TENSION_MAX_STRAIN, TimestepSafety=safety,
                                    FrameInterval=tduration / 20, NumberOfFrames=20, SampleInterval=20,
                                    progress=progress, stop_below=0.5,
                                    CheckpointFile=checkpoint(args, "tension"))

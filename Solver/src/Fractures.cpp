@@ -21,6 +21,12 @@ constexpr double kDegrees = 180.0 / kPi;
 constexpr int kTrials = 256;            ///< plane candidates per extraction
 constexpr double kPlaneShare = 0.25;    ///< a split plane holds at least this share of the remaining cracks
 constexpr double kSplitCoverage = 0.75; ///< the split planes hold at least this share of the cluster
+constexpr double kLocalScale = 1.0;     ///< local plane of a crack: its set's cracks within this x Cluster Distance
+constexpr std::size_t kLocalMinimum = 6; ///< cracks (itself included) for a local plane
+constexpr double kLocalGate = 0.5;      ///< Local Planarity a crack needs to seed or grow a plane
+constexpr double kGrownShare = 0.05;    ///< a grown plane holds at least this share of its cluster
+constexpr double kGrownFillContrast = 0.5; ///< a grown plane's Fill exceeds the damage fraction D by this share of 1 - D
+constexpr double kGrowThickness = 0.5;  ///< a grown plane takes cracks within this x Cluster Distance of it
 
 struct Crack {
   Vec3 position;        ///< m
@@ -69,6 +75,47 @@ struct CellHash {
   }
 };
 
+/// Calls fn(i, j) for every pair i < j of `members` (local indices) whose crack positions
+/// lie within `distance` (> 0), over a uniform grid of cell `distance`; the pairs of one i
+/// come in ascending cell order (deterministic).
+template <typename Fn>
+void forEachPairWithin(const std::vector<Crack>& cracks, const std::vector<std::size_t>& members, double distance, Fn&& fn)
+{
+  const std::size_t n = members.size();
+  if (n == 0 || !(distance > 0.0)) {
+    return;
+  }
+  const double cell = distance;
+  const double d2 = distance * distance;
+  std::unordered_map<CellKey, std::vector<std::size_t>, CellHash> grid;
+  grid.reserve(n);
+  std::vector<CellKey> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = cracks[members[i]].position;
+    keys[i] = CellKey{ static_cast<std::int64_t>(std::floor(p.x() / cell)),
+      static_cast<std::int64_t>(std::floor(p.y() / cell)), static_cast<std::int64_t>(std::floor(p.z() / cell)) };
+    grid[keys[i]].push_back(i);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = cracks[members[i]].position;
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find(CellKey{ keys[i].x + dx, keys[i].y + dy, keys[i].z + dz });
+          if (it == grid.end()) {
+            continue;
+          }
+          for (std::size_t j : it->second) {
+            if (j > i && (cracks[members[j]].position - p).squaredNorm() <= d2) {
+              fn(i, j);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 /// Connected parts of `members` (indices into cracks): joined when within `distance`,
 /// or when sharing a particle and within `shareDistance`. Parts are sorted by their
 /// smallest member; members of a part are ascending.
@@ -80,37 +127,7 @@ std::vector<std::vector<std::size_t>> connectedParts(const std::vector<Crack>& c
   if (n == 0) {
     return {};
   }
-  const double cell = distance > 0.0 ? distance : 1.0;
-  const double d2 = distance * distance;
-  std::unordered_map<CellKey, std::vector<std::size_t>, CellHash> grid;
-  grid.reserve(n);
-  std::vector<CellKey> keys(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& p = cracks[members[i]].position;
-    keys[i] = CellKey{ static_cast<std::int64_t>(std::floor(p.x() / cell)),
-      static_cast<std::int64_t>(std::floor(p.y() / cell)), static_cast<std::int64_t>(std::floor(p.z() / cell)) };
-    grid[keys[i]].push_back(i);
-  }
-  if (distance > 0.0) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec3& p = cracks[members[i]].position;
-      for (int dx = -1; dx <= 1; ++dx) {
-        for (int dy = -1; dy <= 1; ++dy) {
-          for (int dz = -1; dz <= 1; ++dz) {
-            const auto it = grid.find(CellKey{ keys[i].x + dx, keys[i].y + dy, keys[i].z + dz });
-            if (it == grid.end()) {
-              continue;
-            }
-            for (std::size_t j : it->second) {
-              if (j > i && (cracks[members[j]].position - p).squaredNorm() <= d2) {
-                uf.unite(i, j);
-              }
-            }
-          }
-        }
-      }
-    }
-  }
+  forEachPairWithin(cracks, members, distance, [&](std::size_t i, std::size_t j) { uf.unite(i, j); });
   // Bonds sharing a particle.
   std::unordered_map<std::int64_t, std::vector<std::size_t>> byParticle;
   byParticle.reserve(2 * n);
@@ -156,27 +173,31 @@ struct PlaneFit {
   double planarity = 0.0;
 };
 
-/// Area-weighted principal axes of the crack positions (2D: in the XY plane).
-PlaneFit fitPlane(const std::vector<Crack>& cracks, const std::vector<std::size_t>& members, bool section2D)
+/// Area-weighted moments of crack positions about a reference point (for a running fit).
+struct Moments {
+  Vec3 origin{ 0, 0, 0 };
+  double w = 0.0;
+  Vec3 p{ 0, 0, 0 };
+  Eigen::Matrix3d pp = Eigen::Matrix3d::Zero();
+  void add(const Crack& c)
+  {
+    const Vec3 d = c.position - origin;
+    w += c.weight;
+    p += c.weight * d;
+    pp.noalias() += c.weight * d * d.transpose();
+  }
+};
+
+/// Principal axes of the moments (2D: in the XY plane).
+PlaneFit fitMoments(const Moments& m, bool section2D)
 {
   PlaneFit f;
-  double total = 0.0;
-  Vec3 c = Vec3::Zero();
-  for (std::size_t m : members) {
-    total += cracks[m].weight;
-    c += cracks[m].weight * cracks[m].position;
-  }
-  if (!(total > 0.0)) {
+  if (!(m.w > 0.0)) {
     return f;
   }
-  c /= total;
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (std::size_t m : members) {
-    const Vec3 d = cracks[m].position - c;
-    C.noalias() += cracks[m].weight * d * d.transpose();
-  }
-  C /= total;
-  f.center = c;
+  const Vec3 mean = m.p / m.w;
+  const Eigen::Matrix3d C = m.pp / m.w - mean * mean.transpose();
+  f.center = m.origin + mean;
   if (section2D) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(C.topLeftCorner<2, 2>());
     const auto& ev = es.eigenvalues();
@@ -192,6 +213,20 @@ PlaneFit fitPlane(const std::vector<Crack>& cracks, const std::vector<std::size_
   }
   f.planarity = f.lambda[1] > 0.0 ? std::max(0.0, 1.0 - f.lambda[0] / f.lambda[1]) : 0.0;
   return f;
+}
+
+/// Area-weighted principal axes of the crack positions (2D: in the XY plane).
+PlaneFit fitPlane(const std::vector<Crack>& cracks, const std::vector<std::size_t>& members, bool section2D)
+{
+  Moments m;
+  if (members.empty()) {
+    return PlaneFit{};
+  }
+  m.origin = cracks[members.front()].position;
+  for (std::size_t k : members) {
+    m.add(cracks[k]);
+  }
+  return fitMoments(m, section2D);
 }
 
 FractureDisc makeDisc(FractureSet set, const PlaneFit& f, const std::vector<Crack>& cracks,
@@ -411,6 +446,144 @@ std::vector<std::vector<std::size_t>> splitIntoPlanes(const std::vector<Crack>& 
   return result;
 }
 
+/// Planes grown through a non-planar cluster by orientation (see extractFractures): the
+/// accepted planes (each ascending), or nothing.
+template <typename Accept>
+std::vector<std::vector<std::size_t>> growPlanes(const std::vector<Crack>& cracks,
+  const std::vector<std::size_t>& cluster, const FractureParameters& params, double distance, bool section2D,
+  const Accept& accept)
+{
+  const std::size_t n = cluster.size();
+  const double localRadius = kLocalScale * distance;
+  const double halfThickness = kGrowThickness * distance;
+  const double localThickness = 0.5 * halfThickness;
+  const double gate = kLocalGate;
+  const double cosTolerance = std::cos(params.orientationTolerance / kDegrees);
+  const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
+  // Neighbours within the local radius (local indices, ascending).
+  std::vector<std::vector<std::size_t>> near(n);
+  forEachPairWithin(cracks, cluster, localRadius, [&](std::size_t i, std::size_t j) {
+    near[i].push_back(j);
+    near[j].push_back(i);
+  });
+  // The local plane of every crack.
+  std::vector<Vec3> localNormal(n, Vec3::UnitZ());
+  std::vector<double> localPlanarity(n, 0.0);
+  std::vector<std::size_t> part;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::sort(near[i].begin(), near[i].end());
+    if (near[i].size() + 1 < kLocalMinimum) {
+      continue;
+    }
+    part.assign(1, cluster[i]);
+    for (std::size_t j : near[i]) {
+      part.push_back(cluster[j]);
+    }
+    // Robust: refit twice to the neighbours near the plane (scattered cracks tilt a plain
+    // fit); the crack's Local Planarity is that of the refit, 0 when fewer than half of
+    // its neighbours lie near its plane.
+    PlaneFit f = fitPlane(cracks, part, section2D);
+    std::vector<std::size_t> in = part;
+    for (int refine = 0; refine < 2; ++refine) {
+      in = inliers(cracks, part, f.center, f.normal, localThickness);
+      if (in.size() < kLocalMinimum) {
+        break;
+      }
+      f = fitPlane(cracks, in, section2D);
+    }
+    localNormal[i] = f.normal;
+    localPlanarity[i] = (in.size() >= kLocalMinimum && 2 * in.size() >= part.size()) ? f.planarity : 0.0;
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{ 0 });
+  std::stable_sort(order.begin(), order.end(),
+    [&](std::size_t a, std::size_t b) { return localPlanarity[a] > localPlanarity[b]; });
+  std::vector<char> assigned(n, 0);
+  std::vector<std::vector<std::size_t>> grown;
+  const double d2 = distance * distance;
+  for (std::size_t seed : order) {
+    if (localPlanarity[seed] < gate) {
+      break;
+    }
+    if (assigned[seed]) {
+      continue;
+    }
+    Moments moments;
+    moments.origin = cracks[cluster[seed]].position;
+    moments.add(cracks[cluster[seed]]);
+    Vec3 normal = localNormal[seed];
+    Vec3 centre = cracks[cluster[seed]].position;
+    std::vector<std::size_t> region{ seed };
+    assigned[seed] = 1;
+    for (std::size_t q = 0; q < region.size(); ++q) {
+      const std::size_t i = region[q];
+      if (localPlanarity[i] < gate) {
+        continue; // joins the plane, but does not grow it
+      }
+      const Vec3& pi = cracks[cluster[i]].position;
+      for (std::size_t j : near[i]) {
+        const Vec3& pj = cracks[cluster[j]].position;
+        if (assigned[j] || (pj - pi).squaredNorm() > d2 || std::abs(localNormal[j].dot(normal)) < cosTolerance ||
+          std::abs(normal.dot(pj - centre)) > halfThickness) {
+          continue;
+        }
+        assigned[j] = 1;
+        region.push_back(j);
+        moments.add(cracks[cluster[j]]);
+        const PlaneFit f = fitMoments(moments, section2D);
+        centre = f.center;
+        if (region.size() >= kLocalMinimum && f.planarity >= gate) {
+          normal = f.normal;
+        }
+      }
+    }
+    if (region.size() < minimum) {
+      continue;
+    }
+    std::vector<std::size_t> plane;
+    plane.reserve(region.size());
+    for (std::size_t i : region) {
+      plane.push_back(cluster[i]);
+    }
+    std::sort(plane.begin(), plane.end());
+    grown.push_back(std::move(plane));
+  }
+  // Coplanar planes merge (the two halves of a fracture cut by another one, whose crossing
+  // line has no planar neighbourhood): normals within Orientation Tolerance and each
+  // centre within the thickness of the other's plane. Larger planes first.
+  std::stable_sort(grown.begin(), grown.end(),
+    [](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) { return a.size() > b.size(); });
+  std::vector<std::vector<std::size_t>> merged;
+  std::vector<PlaneFit> fits;
+  for (auto& plane : grown) {
+    const PlaneFit f = fitPlane(cracks, plane, section2D);
+    bool joined = false;
+    for (std::size_t k = 0; k < merged.size() && !joined; ++k) {
+      const PlaneFit& g = fits[k];
+      if (std::abs(f.normal.dot(g.normal)) >= cosTolerance && std::abs(g.normal.dot(f.center - g.center)) <= halfThickness &&
+        std::abs(f.normal.dot(g.center - f.center)) <= halfThickness) {
+        std::vector<std::size_t> both;
+        std::merge(merged[k].begin(), merged[k].end(), plane.begin(), plane.end(), std::back_inserter(both));
+        merged[k].swap(both);
+        fits[k] = fitPlane(cracks, merged[k], section2D);
+        joined = true;
+      }
+    }
+    if (!joined) {
+      merged.push_back(std::move(plane));
+      fits.push_back(f);
+    }
+  }
+  const std::size_t needed = std::max(minimum, static_cast<std::size_t>(std::ceil(kGrownShare * static_cast<double>(n))));
+  std::vector<std::vector<std::size_t>> result;
+  for (auto& plane : merged) {
+    if (plane.size() >= needed && accept(plane)) {
+      result.push_back(std::move(plane));
+    }
+  }
+  return result;
+}
+
 std::string plural(std::size_t n, const char* one, const char* many)
 {
   return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -427,6 +600,10 @@ void validate(const FractureParameters& p)
   requireInRange("Minimum Planarity", p.minimumPlanarity, 0.0, 1.0);
   requireNonNegative("Cluster Distance", p.clusterDistance, "m");
   requireInRange("Minimum Fill", p.minimumFill, 0.0, 1.0);
+  if (!(p.orientationTolerance >= 0.0 && p.orientationTolerance < 90.0)) {
+    throw InputError("Orientation Tolerance = " + formatValue(p.orientationTolerance) +
+      " degrees is out of range: valid range is [0, 90) degrees (0 = off).");
+  }
   if (p.discSides < 3) {
     throw InputError("Disc Sides = " + std::to_string(p.discSides) +
       " is out of range: valid range is [3, inf) (a polygon needs at least three vertices).");
@@ -455,6 +632,7 @@ FractureCounts& FractureCounts::operator+=(const FractureCounts& o)
   rejectedNonPlanar += o.rejectedNonPlanar;
   rejectedSparse += o.rejectedSparse;
   splitClusters += o.splitClusters;
+  grownClusters += o.grownClusters;
   cracksInDiscs += o.cracksInDiscs;
   return *this;
 }
@@ -482,6 +660,10 @@ std::string FractureReport::summary() const
       " rejected as sparse";
     if (c.splitClusters) {
       s += ", " + std::to_string(c.splitClusters) + " non-planar resolved into planar parts";
+      if (c.grownClusters) {
+        s += " (" + std::to_string(c.grownClusters) + " by planes grown within Orientation Tolerance " +
+          formatValue(orientationTolerance) + " deg)";
+      }
     }
     s += ".";
   }
@@ -542,6 +724,7 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   report.minimumCracks = params.minimumCracks;
   report.minimumPlanarity = params.minimumPlanarity;
   report.minimumFill = params.minimumFill;
+  report.orientationTolerance = params.orientationTolerance;
   const double distance = params.clusterDistance > 0.0 ? params.clusterDistance : DefaultClusterDiameters * meanParticleDiameter(model);
   report.clusterDistance = distance;
   const auto& r = model.particles.radius;
@@ -575,6 +758,8 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   }
 
   const BondSegments segments = bondSegments(model);
+  const double damage = b.size() ? static_cast<double>(cracks.size()) / static_cast<double>(b.size()) : 0.0;
+  const double grownFill = damage + kGrownFillContrast * (1.0 - damage);
   const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
 
   for (int s = 0; s < FractureSetCount; ++s) {
@@ -598,6 +783,19 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
         into->push_back(std::move(d));
       }
       return Verdict::Emitted;
+    };
+    // A plane grown by orientation is a disc only if it is clearly more broken than the
+    // model as a whole: Fill >= D + (1 - D) / 2, D the broken fraction of all bonds (in
+    // diffuse damage a chance alignment has a Fill near D).
+    auto grownDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
+      std::vector<FractureDisc> one;
+      if (tryDisc(part, &one) != Verdict::Emitted || one.front().fill < grownFill) {
+        return false;
+      }
+      if (into) {
+        into->push_back(std::move(one.front()));
+      }
+      return true;
     };
     // Non-planar: perhaps intersecting fractures (splitIntoPlanes). Returns the discs found.
     auto resolve = [&](const std::vector<std::size_t>& cluster) {
@@ -625,6 +823,13 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
         continue;
       }
       auto found = resolve(cluster);
+      if (found.empty() && params.orientationTolerance > 0.0) {
+        for (const auto& part : growPlanes(cracks, cluster, params, distance, section2D,
+               [&](const std::vector<std::size_t>& p) { return grownDisc(p, nullptr); })) {
+          grownDisc(part, &found);
+        }
+        c.grownClusters += found.empty() ? 0 : 1;
+      }
       if (found.empty()) {
         ++c.rejectedNonPlanar;
         continue;

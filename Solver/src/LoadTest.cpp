@@ -19,6 +19,7 @@ const char* modeName(TestMode mode)
     case TestMode::Tension: return "Tension";
     case TestMode::Triaxial: return "Triaxial";
     case TestMode::Isotropic: return "Isotropic";
+    case TestMode::Brazilian: return "Brazilian";
   }
   return "?";
 }
@@ -62,6 +63,9 @@ void validate(const LoadTestSettings& s)
   if (!(s.servoAlpha > 0.0 && s.servoAlpha <= 1.0)) {
     throw InputError("Servo Alpha = " + formatValue(s.servoAlpha) + " is out of range: valid range is (0, 1].");
   }
+  if (s.mode == TestMode::Tension) {
+    requirePositive("Grip Length", s.gripLength, "largest particle diameters");
+  }
   if (s.sampleInterval < 1) {
     throw InputError("Sample Interval = " + std::to_string(s.sampleInterval) +
                      " is out of range: it must be 1 or more steps.");
@@ -72,7 +76,8 @@ bool operator==(const LoadTestSettings& a, const LoadTestSettings& b)
 {
   return a.mode == b.mode && a.axis == b.axis && a.confiningStress == b.confiningStress &&
     a.strainRate == b.strainRate && a.maxStrain == b.maxStrain && a.servoAlpha == b.servoAlpha &&
-    a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance;
+    a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance &&
+    a.gripLength == b.gripLength;
 }
 
 bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings)
@@ -82,6 +87,23 @@ bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings)
   }
   return test.settings == settings &&
     (test.stage == TestStage::Consolidate || test.stage == TestStage::Shear);
+}
+
+double brazilianStress(double load, double diameter, double thickness)
+{
+  constexpr double pi = 3.14159265358979323846;
+  return diameter > 0.0 && thickness > 0.0 ? 2.0 * load / (pi * diameter * thickness) : 0.0;
+}
+
+std::array<double, 2> brazilianDisc(const Model& model)
+{
+  const int a = model.test.settings.axis;
+  const auto& l0 = model.test.initialLength;
+  const double diameter = l0[static_cast<std::size_t>(a)];
+  const double thickness = model.domain.section2D
+    ? model.domain.slabThickness()
+    : std::min(l0[static_cast<std::size_t>((a + 1) % 3)], l0[static_cast<std::size_t>((a + 2) % 3)]);
+  return { { diameter, thickness } };
 }
 
 double centreSpread(const Particles& particles, int axis)
@@ -106,7 +128,8 @@ void validatePlatenSpeed(const Model& model, double timestep)
 {
   const LoadTestSettings& s = model.test.settings;
   const Particles& p = model.particles;
-  if ((s.mode != TestMode::Compression && s.mode != TestMode::Tension && s.mode != TestMode::Triaxial) ||
+  if ((s.mode != TestMode::Compression && s.mode != TestMode::Tension && s.mode != TestMode::Triaxial &&
+       s.mode != TestMode::Brazilian) ||
       p.empty() || !(timestep > 0.0) || s.axis < 0 || s.axis > 2 ||
       model.solver.allowUnsafeTimestep) { // test-only: show what an unsafe run does
     return;
@@ -154,6 +177,26 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
         "first (DEM Cement), or use Mode = Compression, Triaxial or Isotropic.");
     }
   }
+  if (settings.mode == TestMode::Tension && !model.particles.empty()) {
+    // The grips (checked before anything changes): they must leave a gauge length.
+    const Particles& q = model.particles;
+    const int a = settings.axis;
+    double lo = std::numeric_limits<double>::max();
+    double hi = -lo;
+    double rmax = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      lo = std::min(lo, q.position[i][a] - q.radius[i]);
+      hi = std::max(hi, q.position[i][a] + q.radius[i]);
+      rmax = std::max(rmax, q.radius[i]);
+    }
+    const double grip = settings.gripLength * 2.0 * rmax; // m
+    if (2.0 * grip >= hi - lo) {
+      throw InputError("Grip Length = " + formatValue(settings.gripLength) + " largest particle diameters (" +
+        formatValue(grip) + " m) is out of range: the two grips would cover the whole specimen (" +
+        formatValue(hi - lo) + " m long along the axis), leaving no gauge length; valid range is (0, " +
+        formatValue(0.5 * (hi - lo) / (2.0 * rmax)) + ") largest particle diameters.");
+    }
+  }
   LoadTestState& t = model.test;
   Particles& p = model.particles;
   // End any previous test: detach particles, restore the box.
@@ -182,7 +225,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
   const Domain& d = model.domain;
   for (int k = 0; k < 3; ++k) {
     if (d.periodic[k] || (d.section2D && k == 2)) {
-      if (k == settings.axis || settings.mode != TestMode::Compression) {
+      if (k == settings.axis || (settings.mode != TestMode::Compression && settings.mode != TestMode::Brazilian)) {
         throw InputError(std::string("Mode = ") + modeName(settings.mode) + " needs walls on axis " +
           "XYZ"[k] + ", but that axis is periodic (or the slab axis of a 2D section).");
       }
@@ -193,6 +236,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
     const bool axial = w.axis == a;
     switch (settings.mode) {
       case TestMode::Compression:
+      case TestMode::Brazilian:
         w.active = w.active && axial; // unconfined: the four side walls are removed
         break;
       case TestMode::Tension:
@@ -202,7 +246,9 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
         break;
     }
   }
-  if ((settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) && !p.empty()) {
+  const bool unconfined = settings.mode == TestMode::Compression || settings.mode == TestMode::Tension ||
+    settings.mode == TestMode::Brazilian;
+  if (unconfined && !p.empty()) {
     // The platens start on the specimen: at the extent of the particles along the axis,
     // so that the strain counts from first contact, not from a gap above a settled pack.
     double lo = std::numeric_limits<double>::max();
@@ -219,8 +265,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
     const Wall& low = model.walls[2 * k];
     const Wall& high = model.walls[2 * k + 1];
     t.initialLength[k] = high.position - low.position;
-    const bool unwalledSide = (settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) &&
-      k != a && !(d.section2D && k == 2) && !p.empty();
+    const bool unwalledSide = unconfined && k != a && !(d.section2D && k == 2) && !p.empty();
     t.initialSpread[k] = 0.0;
     if (unwalledSide) {
       // Without side walls the specimen's lateral size starts as the particles' extent;
@@ -237,16 +282,18 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
   }
   t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
   if (settings.mode == TestMode::Tension) {
-    // Attach the particles within one largest diameter of each platen: they move with it.
+    // The grips: the particles whose surface lies within Grip Length (largest diameters)
+    // of each platen are attached to it and move with it.
     const double rmax = p.empty() ? 0.0 : *std::max_element(p.radius.begin(), p.radius.end());
     const double low = model.walls[2 * a].position;
     const double high = model.walls[2 * a + 1].position;
+    const double grip = settings.gripLength * 2.0 * rmax; // m
     for (std::size_t i = 0; i < p.size(); ++i) {
-      if (p.position[i][a] - p.radius[i] <= low + 2.0 * rmax) {
+      if (p.position[i][a] - p.radius[i] <= low + grip) {
         p.flags[i] |= FlagAttachedLow;
         p.velocity[i].setZero();
         p.angularVelocity[i].setZero();
-      } else if (p.position[i][a] + p.radius[i] >= high - 2.0 * rmax) {
+      } else if (p.position[i][a] + p.radius[i] >= high - grip) {
         p.flags[i] |= FlagAttachedHigh;
         p.velocity[i].setZero();
         p.velocity[i][a] = settings.strainRate * t.initialLength[a];
@@ -258,7 +305,7 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
   t.stage = (settings.mode == TestMode::Triaxial || settings.mode == TestMode::Isotropic)
     ? TestStage::Consolidate
     : TestStage::Shear;
-  if (settings.mode == TestMode::Compression) {
+  if (settings.mode == TestMode::Compression || settings.mode == TestMode::Brazilian) {
     model.walls[2 * a + 1].velocity = -settings.strainRate * t.initialLength[a];
   }
   return removed;

@@ -323,6 +323,12 @@ TestMeasurements Simulation::measurements() const
     }
     const double area = length[(a + 1) % 3] * length[(a + 2) % 3];
     m.axialStress = area > 0.0 ? pull / area : 0.0; // negative in tension
+  } else if (s.mode == TestMode::Brazilian) {
+    // The disc's Brazilian stress 2 P / (pi D t), P the mean push of the two platens.
+    const double load = -0.5 * (model_.walls[2 * a].force.dot(model_.walls[2 * a].normal()) +
+                                model_.walls[2 * a + 1].force.dot(model_.walls[2 * a + 1].normal()));
+    const std::array<double, 2> disc = brazilianDisc(model_);
+    m.axialStress = brazilianStress(load, disc[0], disc[1]);
   } else {
     m.axialStress = 0.5 * (m.faceStress[2 * a] + m.faceStress[2 * a + 1]);
   }

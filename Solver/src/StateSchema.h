@@ -185,7 +185,7 @@ void visitModel(IO& io, Model& m)
 
   // ---- /test: the load-test state machine and its history ------------------------------
   LoadTestSettings& ts = m.test.settings;
-  io.enumeration("test/settings/mode", ts.mode, static_cast<int>(TestMode::Isotropic));
+  io.enumeration("test/settings/mode", ts.mode, static_cast<int>(TestMode::Brazilian));
   io.i32("test/settings/axis", ts.axis, "1");
   io.f64("test/settings/confining_stress", ts.confiningStress, "Pa");
   io.f64("test/settings/strain_rate", ts.strainRate, "1/s");
@@ -193,6 +193,11 @@ void visitModel(IO& io, Model& m)
   io.f64("test/settings/servo_alpha", ts.servoAlpha, "1");
   io.i64("test/settings/sample_interval", ts.sampleInterval, "1");
   io.f64("test/settings/settle_tolerance", ts.settleTolerance, "1");
+  if (io.has("test/settings/grip_length")) {
+    io.f64("test/settings/grip_length", ts.gripLength, "1");
+  } else {
+    ts.gripLength = 1.0; // files written before Grip Length: the grip was one largest diameter
+  }
   LoadTestState& t = m.test;
   io.enumeration("test/state/stage", t.stage, static_cast<int>(TestStage::Done));
   io.doubles3("test/state/initial_length", t.initialLength, "m");

@@ -230,11 +230,14 @@ TEST(FracturesToDFN, BadParameterIsNamedAndGivesNoOutput)
   dfn->SetInputData(mb);
   ASSERT_TRUE(UpdateSucceeded(dfn));
   ASSERT_EQ(dfn->GetNumberOfDiscs(), 1);
-  for (int bad = 0; bad < 3; ++bad)
+  for (int bad = 0; bad < 4; ++bad)
   {
     vtkNew<vtkDEMFracturesToDFN> f;
     f->SetInputData(mb);
-    const char* name = bad == 0 ? "Minimum Cracks" : bad == 1 ? "Minimum Planarity" : "Cluster Distance";
+    const char* name = bad == 0 ? "Minimum Cracks"
+      : bad == 1                ? "Minimum Planarity"
+      : bad == 2                ? "Cluster Distance"
+                                : "Orientation Tolerance = 90 degrees";
     if (bad == 0)
     {
       f->SetMinimumCracks(2);
@@ -244,9 +247,13 @@ TEST(FracturesToDFN, BadParameterIsNamedAndGivesNoOutput)
       f->SetMinimumPlanarity(-0.1);
       f->SetMinimumFill(0.5); // valid: the error names the bad one
     }
-    else
+    else if (bad == 2)
     {
       f->SetClusterDistance(-1.0);
+    }
+    else
+    {
+      f->SetOrientationTolerance(90.0); // the property reaches the engine's validation
     }
     vtkNew<ErrorCatcher> errors;
     f->AddObserver(vtkCommand::ErrorEvent, errors);

@@ -14,12 +14,13 @@
 namespace dem {
 namespace testing {
 
-/// n grains with radii in [rmin, rmax] m placed and grown in a cube of the given side (m),
-/// without gravity; grain modulus 1e8 Pa.
-inline Model specimen(int n, double side, double rmin, double rmax, std::uint64_t seed = 1)
+/// n grains with radii in [rmin, rmax] m placed (not grown) in a box of the given size (m;
+/// a 2D section when section2D, size.z the slab), without gravity; grain modulus 1e8 Pa.
+inline Model placedPack(const Vec3& size, bool section2D, int n, double rmin, double rmax, std::uint64_t seed)
 {
   Model m;
-  m.domain.size = Vec3(side, side, side);
+  m.domain.size = size;
+  m.domain.section2D = section2D;
   m.material.youngsModulus = 1e8;
   m.gravity.setZero();
   PackParameters p;
@@ -28,6 +29,14 @@ inline Model specimen(int n, double side, double rmin, double rmax, std::uint64_
   p.maximumSize = rmax;
   p.randomSeed = seed;
   buildPack(m, p);
+  return m;
+}
+
+/// n grains with radii in [rmin, rmax] m placed and grown in a cube of the given side (m),
+/// without gravity; grain modulus 1e8 Pa.
+inline Model specimen(int n, double side, double rmin, double rmax, std::uint64_t seed = 1)
+{
+  Model m = placedPack(Vec3(side, side, side), false, n, rmin, rmax, seed);
   growElements(m);
   return m;
 }

@@ -237,10 +237,10 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(Wall), 80u) << "Wall" << fix;
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
   EXPECT_EQ(sizeof(Bonds), 17 * sizeof(std::vector<double>)) << "Bonds" << fix;
-  EXPECT_EQ(sizeof(LoadTestSettings), 56u) << "LoadTestSettings" << fix;
+  EXPECT_EQ(sizeof(LoadTestSettings), 64u) << "LoadTestSettings" << fix;
   EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1224u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1232u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
@@ -410,7 +410,7 @@ TEST(StateFile, InconsistentArraySizesAreRejected)
     H5Sclose(space);
   });
   error = memoryError(badMode);
-  EXPECT_NE(error.find("'/test/settings/mode' = 9 is out of range: valid values are 0 to 4"), std::string::npos)
+  EXPECT_NE(error.find("'/test/settings/mode' = 9 is out of range: valid values are 0 to 5"), std::string::npos)
     << error;
   // A value the engine rejects (a negative radius) is reported as user input is.
   const auto negativeRadius = editImage(image, [&](hid_t f) {

@@ -39,6 +39,10 @@ struct FractureParameters {
   double minimumPlanarity = 0.8;   ///< Minimum Planarity: 1 - l1/l2 at least this, [0, 1]
   double clusterDistance = 0.0;    ///< Cluster Distance, m, >= 0; 0 = two mean particle diameters
   double minimumFill = 0.0;        ///< Minimum Fill: broken fraction of the bonds crossing the disc, [0, 1]; 0 = off
+  /// Orientation Tolerance, degrees, [0, 90): a crack joins a plane grown through a
+  /// non-planar cluster when its local plane is within this angle of the plane's running
+  /// normal; 0 = off (distance clustering and the plane split only).
+  double orientationTolerance = 30.0;
   int discSides = 24;              ///< Disc Sides: vertices of each disc polygon, >= 3
 };
 
@@ -78,6 +82,7 @@ struct FractureCounts {
   std::size_t rejectedNonPlanar = 0; ///< clusters below Minimum Planarity that did not resolve into planar parts
   std::size_t rejectedSparse = 0;    ///< planar clusters whose disc has a Fill below Minimum Fill
   std::size_t splitClusters = 0;     ///< non-planar clusters resolved into planar parts
+  std::size_t grownClusters = 0;     ///< of those, resolved by orientation-aware growth (Orientation Tolerance)
   std::size_t cracksInDiscs = 0;     ///< cracks that ended up in a disc
   FractureCounts& operator+=(const FractureCounts& o);
 };
@@ -89,6 +94,7 @@ struct FractureReport {
   int minimumCracks = 0;          ///< the parameters the counts refer to
   double minimumPlanarity = 0.0;
   double minimumFill = 0.0;
+  double orientationTolerance = 0.0; ///< degrees
   /// Several lines: per set "Tensile: N broken bonds, C clusters, D discs, ...", then a
   /// line saying why nothing was emitted when that is the case.
   std::string summary() const;
@@ -127,8 +133,25 @@ Vec3 normalFromDipAzimuth(double dipDegrees, double azimuthDegrees);
 /// within half the clustering distance, 256 deterministic trials, refined by a fit to
 /// those cracks); a plane is kept if it holds at least a quarter of the cluster's cracks
 /// and Minimum Cracks, and its connected parts are kept when they make discs. The split
-/// stands only if the kept planes hold at least 75 % of the cluster's cracks; otherwise
-/// the cluster is rejected as non-planar.
+/// stands only if the kept planes hold at least 75 % of the cluster's cracks.
+/// Otherwise, with Orientation Tolerance > 0, planes are grown through the cluster by
+/// orientation (a failed specimen's damage: a thick, connected blob with planar parts and
+/// scattered cracks): every crack gets a local plane, the area-weighted fit of the cracks
+/// of its cluster within Cluster Distance, refitted twice to those within a quarter
+/// Cluster Distance of the plane (its Local Planarity is 1 - l1/l2 of that fit, 0 when
+/// fewer than 6 cracks or fewer than half its neighbours lie near the plane); seeds are
+/// taken in order of decreasing Local Planarity (at least 0.5), and a plane
+/// grows from its seed to neighbours within Cluster Distance whose local normal is within
+/// Orientation Tolerance of the plane's running normal (the fit of its cracks so far,
+/// kept while that fit is planar) and whose position is within half a Cluster Distance of
+/// the running plane; only cracks whose Local Planarity reaches 0.5 grow the plane
+/// further. Coplanar planes merge (normals within Orientation Tolerance, each centre
+/// within half a Cluster Distance of the other's plane). A grown plane holding at least
+/// 5 % of its cluster (and Minimum Cracks) is a disc when it passes the same tests as a
+/// cluster and is clearly more broken than the model: Fill >= D + (1 - D) / 2, D the
+/// broken fraction of all bonds (a chance alignment in diffuse damage has a Fill near D); the
+/// cracks of no disc stay unassigned (scattered damage). Only when no plane is found is
+/// the cluster rejected as non-planar.
 FractureNetwork extractFractures(const Model& model, const FractureParameters& params);
 
 } // namespace dem

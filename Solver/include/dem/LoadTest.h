@@ -21,7 +21,7 @@ namespace dem {
 struct Model;
 struct Particles;
 
-enum class TestMode : std::uint8_t { Off = 0, Compression = 1, Tension = 2, Triaxial = 3, Isotropic = 4 };
+enum class TestMode : std::uint8_t { Off = 0, Compression = 1, Tension = 2, Triaxial = 3, Isotropic = 4, Brazilian = 5 };
 enum class TestStage : std::uint8_t { Idle = 0, Consolidate = 1, Shear = 2, Done = 3 };
 
 /// The guide's words for modes and stages ("Off", "Compression", ...; "consolidate", "shear").
@@ -38,6 +38,10 @@ struct LoadTestSettings {
   double servoAlpha = 0.5;       ///< servo aggressiveness, (0, 1]
   std::int64_t sampleInterval = 100; ///< physics steps between history rows, >= 1
   double settleTolerance = 0.01; ///< servo faces within this relative error count as settled
+  /// Tension: the particles whose surface lies within this many largest particle diameters
+  /// of each platen are held to it (the grips), dimensionless, > 0. 1 is the grip of state
+  /// files written before Grip Length existed.
+  double gripLength = 1.0;
 };
 
 /// Field-by-field equality (two stages with equal settings run the same test).
@@ -78,6 +82,17 @@ struct TestMeasurements {
   double suggestedStrainRate = 0.0; ///< 1/s, the rate giving an inertial number of 1e-4
 };
 
+/// The Brazilian (indirect tensile) stress at the centre of a disc of the given diameter
+/// and thickness (m) squeezed along a diameter by the load (N): 2 P / (pi D t), Pa (ISRM
+/// 1978; the elastic solution of Hertz 1883 / Timoshenko and Goodier for a diametral load).
+double brazilianStress(double load, double diameter, double thickness);
+
+/// The disc of a Brazilian test (Mode Brazilian) as {diameter D, thickness t} (m): D is
+/// the specimen's starting length along Axis (the platens start on the disc), t the slab
+/// thickness in a 2D section, else the smaller starting extent across Axis (a disc carved
+/// by DEM Specimen is no thicker than its diameter).
+std::array<double, 2> brazilianDisc(const Model& model);
+
 /// Spread of the particle centres along an axis (m): their mean absolute deviation from
 /// the mean, sum |x_i - xbar| / N, summed in slot order. A homogeneous deformation
 /// x' = xbar + (1 + e)(x - xbar) scales it by exactly (1 + e), and one particle that flies
@@ -101,13 +116,14 @@ constexpr double MaxPlatenTravelPerStep = 0.01;
 void validatePlatenSpeed(const Model& model, double timestep);
 
 /// Starts a test on the model: records the specimen size, sets up the walls for the
-/// mode (Compression and Tension remove the side walls; Tension attaches the particles
-/// next to each platen to it) and the first stage. Mode Off restores the six walls at
+/// mode (Compression, Brazilian and Tension remove the side walls; Tension attaches the
+/// particles within Grip Length of each platen to it) and the first stage. Mode Off restores the six walls at
 /// the current box and ends any test. Once the new stage's walls are in place, removes
 /// the particles whose centres lie beyond them (beyondActiveWalls: grains that escaped
 /// while those walls were down, in an unconfined test) with their bonds and contacts, and
 /// returns what it removed (Documentation/Press.md, "Escaped grains"). Throws
-/// InputError for invalid settings and for Mode Tension on a model without intact bonds.
+/// InputError for invalid settings, for Mode Tension on a model without intact bonds and
+/// for grips that would leave no gauge length between them.
 RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings);
 
 /// Whether a stage asked to run `settings` on a model whose test state is `test` continues
