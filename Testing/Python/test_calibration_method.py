@@ -6,7 +6,7 @@ with a known root (linear, strongly curved, noisy-free log-log), its bracket and
 property relations are closed-form (E proportional to the Bond Modulus and falling with
 the Bond Stiffness Ratio, nu falling with the ratio, UCS proportional to the bond
 strength and UCS / sigma_t rising with Cohesion / Tensile and saturating at 5.6, the
-ceiling Documentation/Rock.md measured), so the parameters it must find are known; a
+ceiling Documentation/Rock.md first measured at Moment Contribution 1), so the parameters it must find are known; a
 target it cannot reach (UCS / sigma_t = 60, the issue's example) stops within the test
 budget and names the unreachable target; bad targets give errors naming key, value and
 range.
