@@ -730,3 +730,11 @@ def _release_shadows():
             disable_shadows(view)
         except Exception:  # the view may be gone already; nothing else to release
             pass
+
+
+# ---------------------------------------------------------------------------------------
+# Calibration (Plugin/rockdem_calibration.py; Documentation/Calibration.md).
+# ---------------------------------------------------------------------------------------
+
+from rockdem_calibration import (  # noqa: E402,F401
+    CalibrationError, build_specimen, calibrate, load_parameters, load_rock, save_parameters, verify)

@@ -1,0 +1,911 @@
+"""RockDEM calibration: from a rock's laboratory properties to cement parameters.
+
+``rockdem.calibrate(target, recipe, progress=None, output=None)`` (this module, re-exported
+by ``rockdem``) runs the laboratory's sequence on one compacted pack (built once per
+recipe; every iteration only re-cements and re-tests it):
+
+1. stiffness: Young's modulus by the secant method on log E against log Bond Modulus,
+   and Poisson's ratio by bracketed secant (regula falsi, Illinois) on nu against
+   log Bond Stiffness Ratio; both from the elastic part of an unconfined compression
+   (bonds made too strong to break);
+2. strength: UCS by the secant method on log UCS against log Tensile Strength (the bond
+   strength scale), and UCS / sigma_t by bracketed secant on the ratio Cohesion / Tensile
+   Strength; sigma_t from the target's tensile test type (TENSILE_TESTS: 'direct' now;
+   a Brazilian test plugs in there as another entry);
+3. envelope (when the target has a friction angle and a confining range): the friction
+   angle of the Mohr-Coulomb fit of triaxial peaks by bracketed secant on the bond
+   Friction Angle;
+
+then again from 1 until every target is within its tolerance, a target is found
+unreachable (the bracket's ends both miss it on the same side), or the test budget is
+spent. What it reaches is reported with its residual, never clamped into success.
+
+Documentation/Calibration.md documents the method, the parameter file and the measured
+runs. The pure functions here (validation, root finding, the parameter file) import no
+ParaView, so they are tested with plain Python as well.
+"""
+
+import json
+import math
+import os
+
+#: Parameter file format name and version (Documentation/Calibration.md).
+FILE_FORMAT = "rockdem-calibration"
+FILE_VERSION = 1
+
+#: Default tolerances: relative for moduli and strengths, absolute for nu and phi (deg).
+DEFAULT_TOLERANCES = {"youngs_modulus": 0.05, "poissons_ratio": 0.03, "ucs": 0.05,
+                      "tensile_strength": 0.05, "friction_angle": 3.0}
+
+#: Tensile test types a target may name, with the function that runs one on a cemented
+#: model. 'brazilian' is not built yet (a Brazilian mode of DEM Load Test is issue 13's):
+#: it is added here as one more entry once the engine has it.
+TENSILE_TESTS = ("direct",)
+
+#: The bracket of each bounded variable (Cement.md ranges, narrowed to what is useful).
+BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 4.0),
+            "FrictionAngle": (0.0, 60.0)}
+
+RECIPE_DEFAULTS = {
+    "elements": 600,            # Initial Elements (count)
+    "minimum_size": 0.00078,    # m, placed radii (Compact Elements grows them about 1.3 x)
+    "maximum_size": 0.00156,    # m
+    "size": None,               # m, [x, y, z]; None: 50 x 50 x 100 mm scaled by (N / 10000)^(1/3)
+    "seed": 1,                  # Random Seed of the pack and of the strength draw
+    "target_porosity": 0.37,
+    "bond_range": 1.4,          # x (rA + rB): bonded coordination about 11 (Rock.md)
+    "moment_contribution": 1.0,
+    "strength_scatter": 0.2,
+    "grain_friction": 0.5,
+    "density": 2650.0,          # kg/m^3
+    "strain_per_step": 1e-6,    # platen strain per timestep (Rock.md)
+    "timestep_safety": 0.3,
+    "max_tests": 30,            # specimen tests in all (every stage together)
+}
+
+TARGET_KEYS = {
+    "name": "label of the rock",
+    "youngs_modulus": "Pa, > 0",
+    "poissons_ratio": "-, in (0, 0.5)",
+    "ucs": "Pa, > 0",
+    "tensile_strength": "Pa, > 0",
+    "tensile_test": "one of %s" % ", ".join(TENSILE_TESTS),
+    "friction_angle": "degrees, in (0, 90)",
+    "cohesion": "Pa, > 0 (reported against the fit, not calibrated separately)",
+    "confining_stresses": "Pa, list of >= 2 distinct values >= 0",
+    "source": "free text: where the values come from",
+    "tolerances": "dict: relative (E, UCS, sigma_t), absolute (nu, phi in deg)",
+}
+
+
+class CalibrationError(ValueError):
+    """A target or recipe value outside its valid range (names the key, value, range)."""
+
+
+def _bad(key, value, valid):
+    return CalibrationError("%s = %r: %s" % (key, value, valid))
+
+
+def _positive(d, key, unit):
+    v = d.get(key)
+    if v is None:
+        return
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise _bad(key, v, "must be a finite number > 0 (%s)" % unit)
+
+
+def validate_target(target):
+    """Checks a target dict; returns a normalised copy. Raises CalibrationError naming the
+    key, its value and the valid range."""
+    if not isinstance(target, dict):
+        raise CalibrationError("target must be a dict of lab properties, got %r" % (target,))
+    unknown = sorted(set(target) - set(TARGET_KEYS))
+    if unknown:
+        raise _bad(unknown[0], target[unknown[0]], "unknown target key; valid keys: %s"
+                   % ", ".join(sorted(TARGET_KEYS)))
+    t = dict(target)
+    for key in ("youngs_modulus", "ucs", "tensile_strength", "cohesion"):
+        _positive(t, key, "Pa")
+    nu = t.get("poissons_ratio")
+    if nu is not None and (isinstance(nu, bool) or not isinstance(nu, (int, float)) or not 0.0 < nu < 0.5):
+        raise _bad("poissons_ratio", nu, "valid range (0, 0.5)")
+    phi = t.get("friction_angle")
+    if phi is not None and (isinstance(phi, bool) or not isinstance(phi, (int, float)) or not 0.0 < phi < 90.0):
+        raise _bad("friction_angle", phi, "valid range (0, 90) degrees")
+    if "tensile_strength" in t:
+        kind = t.setdefault("tensile_test", "direct")
+        if kind not in TENSILE_TESTS:
+            raise _bad("tensile_test", kind, "valid: %s (a Brazilian test is not in the engine yet)"
+                       % ", ".join(repr(k) for k in TENSILE_TESTS))
+    elif "tensile_test" in t and t["tensile_test"] not in TENSILE_TESTS:
+        raise _bad("tensile_test", t["tensile_test"], "valid: %s" % ", ".join(repr(k) for k in TENSILE_TESTS))
+    if phi is not None:
+        s3 = t.get("confining_stresses")
+        if not isinstance(s3, (list, tuple)) or len(set(s3)) < 2 or \
+                any(isinstance(s, bool) or not isinstance(s, (int, float)) or s < 0 for s in s3):
+            raise _bad("confining_stresses", s3, "a friction angle needs a list of >= 2 distinct "
+                       "confining stresses >= 0 (Pa)")
+    if not any(k in t for k in ("youngs_modulus", "poissons_ratio", "ucs", "tensile_strength",
+                                "friction_angle")):
+        raise CalibrationError("target has nothing to calibrate: give at least one of "
+                               "youngs_modulus, poissons_ratio, ucs, tensile_strength, friction_angle")
+    tol = dict(DEFAULT_TOLERANCES)
+    for key, value in (t.get("tolerances") or {}).items():
+        if key not in DEFAULT_TOLERANCES:
+            raise _bad("tolerances." + key, value, "valid keys: %s" % ", ".join(sorted(DEFAULT_TOLERANCES)))
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
+            raise _bad("tolerances." + key, value, "must be > 0")
+        tol[key] = float(value)
+    t["tolerances"] = tol
+    return t
+
+
+def validate_recipe(recipe):
+    """Checks a recipe dict against RECIPE_DEFAULTS; returns it with the defaults filled."""
+    recipe = dict(recipe or {})
+    unknown = sorted(set(recipe) - set(RECIPE_DEFAULTS))
+    if unknown:
+        raise _bad(unknown[0], recipe[unknown[0]], "unknown recipe key; valid keys: %s"
+                   % ", ".join(sorted(RECIPE_DEFAULTS)))
+    r = dict(RECIPE_DEFAULTS)
+    r.update(recipe)
+    if not isinstance(r["elements"], int) or isinstance(r["elements"], bool) or not 10 <= r["elements"] <= 200000:
+        raise _bad("elements", r["elements"], "an integer count in [10, 200000]")
+    _positive(r, "minimum_size", "m")
+    _positive(r, "maximum_size", "m")
+    if r["maximum_size"] < r["minimum_size"]:
+        raise _bad("maximum_size", r["maximum_size"], "must be >= minimum_size (%g m)" % r["minimum_size"])
+    if r["size"] is not None and (len(r["size"]) != 3 or any(not s > 0 for s in r["size"])):
+        raise _bad("size", r["size"], "[x, y, z] in m, each > 0")
+    if not isinstance(r["max_tests"], int) or r["max_tests"] < 1:
+        raise _bad("max_tests", r["max_tests"], "an integer >= 1")
+    for key in ("strain_per_step", "timestep_safety", "density"):
+        _positive(r, key, "see Calibration.md")
+    if not 1.0 <= r["bond_range"] <= 2.0:
+        raise _bad("bond_range", r["bond_range"], "valid range [1, 2]")
+    return r
+
+
+# ---------------------------------------------------------------------------------------
+# Root finding on one monotone relation y(x) = goal, x in a bracket (or unbounded).
+# ---------------------------------------------------------------------------------------
+
+class SecantSolver:
+    """Bracketed secant (regula falsi with the Illinois modification) on a monotone,
+    noisy relation, driven one evaluation at a time (each evaluation is a specimen test).
+
+    The caller asks ``next_x()``, measures y there and gives it to ``add(x, y)``. The
+    solver keeps the two points that bracket the goal once it has them (then the
+    Illinois step, which cannot leave the bracket and converges superlinearly); before
+    that it takes secant steps through the two latest points, or, with one point, a step
+    of slope ``slope_guess`` (dy/dx); steps are limited to ``max_step`` in x and to the
+    bounds [lo, hi]. When y at a bound is still on the wrong side of the goal, and the
+    relation's slope sign (``increasing``) says beyond the bound it would only get
+    closer, the goal is unreachable: ``unreachable`` is set, and ``best`` is the point
+    nearest the goal.
+    """
+
+    def __init__(self, goal, lo=-math.inf, hi=math.inf, slope_guess=1.0, max_step=math.inf,
+                 increasing=None):
+        self.goal = float(goal)
+        self.lo, self.hi = float(lo), float(hi)
+        self.slope_guess = float(slope_guess)
+        self.max_step = float(max_step)
+        self.increasing = increasing if increasing is not None else slope_guess > 0
+        self.points = []          # (x, residual) in evaluation order
+        self.unreachable = False
+        self._illinois_side = 0
+        self._bracket = None      # ((x, residual < 0), (x, residual > 0)) once found
+
+    def add(self, x, y):
+        x, r = float(x), float(y) - self.goal
+        self.points.append((x, r))
+        if self._bracket is not None:
+            # Illinois: the new point replaces the end on its side; when the same side was
+            # replaced last time too, the residual kept at the other end is halved.
+            side = 1 if r > 0 else -1
+            (xa, ra), (xb, rb) = self._bracket
+            if side < 0:
+                xa, ra = x, r
+                if self._illinois_side < 0:
+                    rb *= 0.5
+            else:
+                xb, rb = x, r
+                if self._illinois_side > 0:
+                    ra *= 0.5
+            self._illinois_side = side
+            self._bracket = ((xa, ra), (xb, rb))
+            return
+        below = [p for p in self.points if p[1] < 0]
+        above = [p for p in self.points if p[1] > 0]
+        if below and above:
+            # the closest points on each side straddle the root (the relation is monotone)
+            self._bracket = (min(below, key=lambda p: -p[1]), min(above, key=lambda p: p[1]))
+
+    @property
+    def best(self):
+        return min(self.points, key=lambda p: abs(p[1])) if self.points else None
+
+    def next_x(self):
+        if not self.points:
+            raise RuntimeError("SecantSolver.next_x needs a first point (add)")
+        x0, r0 = self.points[-1]
+        if r0 == 0.0:
+            return x0
+        if self._bracket is not None:
+            (xa, ra), (xb, rb) = self._bracket
+            return xa - ra * (xb - xa) / (rb - ra)
+        if len(self.points) >= 2 and self.points[-2][0] != x0:
+            x1, r1 = self.points[-2]
+            slope = (r0 - r1) / (x0 - x1)
+            # a slope of the wrong sign (noise) is not trusted: keep the guess
+            if slope == 0.0 or (slope > 0) != self.increasing:
+                slope = self.slope_guess
+        else:
+            slope = self.slope_guess
+        step = -r0 / slope
+        step = max(-self.max_step, min(self.max_step, step))
+        x = min(self.hi, max(self.lo, x0 + step))
+        # at a bound already, and the relation would need to go beyond it: unreachable
+        if x == x0 and (x0 in (self.lo, self.hi)):
+            self.unreachable = True
+        return x
+
+
+def solve(function, goal, x0, tolerance, max_evaluations, **kwargs):
+    """Solves function(x) = goal with SecantSolver from x0 (a helper for the synthetic
+    tests and for users with a cheap model). Stops when |function(x) - goal| <=
+    tolerance, the goal is unreachable within the bounds, or after max_evaluations.
+    Returns (x, y, evaluations, converged)."""
+    solver = SecantSolver(goal, **kwargs)
+    x = x0
+    for n in range(1, max_evaluations + 1):
+        y = function(x)
+        solver.add(x, y)
+        if abs(y - goal) <= tolerance:
+            return x, y, n, True
+        x = solver.next_x()
+        if solver.unreachable:
+            break
+    xb, rb = solver.best
+    return xb, rb + goal, len(solver.points), False
+
+
+# ---------------------------------------------------------------------------------------
+# Parameter file
+# ---------------------------------------------------------------------------------------
+
+PACK_PROPERTIES = ("InitialElements", "MinimumSize", "MaximumSize", "TargetPorosity", "RandomSeed",
+                   "Density", "YoungsModulus", "PoissonsRatio", "Friction", "XDimension",
+                   "YDimension", "ZDimension")
+CEMENT_PROPERTIES = ("BondModulus", "BondStiffnessRatio", "TensileStrength", "Cohesion",
+                     "FrictionAngle", "BondRange", "MomentContribution", "StrengthScatter",
+                     "RandomSeed")
+
+
+def save_parameters(path, result):
+    """Writes the calibrated parameter set (a ``calibrate`` result) as JSON, atomically."""
+    doc = {"format": FILE_FORMAT, "version": FILE_VERSION,
+           "rock": result["target"].get("name", ""),
+           "pack": result["pack"], "cement": result["cement"],
+           "test": result["test"], "recipe": result["recipe"], "parameters": result["parameters"],
+           "target": {k: v for k, v in result["target"].items() if k != "tolerances"},
+           "tolerances": result["target"]["tolerances"],
+           "measured": result["measured"], "errors": result["errors"],
+           "converged": result["converged"], "unreachable": result["unreachable"],
+           "tests": result["tests"]}
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(doc, f, indent=2, sort_keys=True)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def load_parameters(path):
+    """Reads a parameter file written by ``calibrate`` (Documentation/Calibration.md).
+
+    Returns {'pack': {DEM Pack Source property: value}, 'cement': {DEM Cement property:
+    value}, 'test': {...}, ...}: ``DEMPackSource(**p['pack'])`` and
+    ``DEMCement(Input=pack, **p['cement'])`` rebuild the calibrated specimen. Raises
+    CalibrationError naming what is wrong (format, version, an unknown property)."""
+    with open(path) as f:
+        try:
+            doc = json.load(f)
+        except ValueError as e:
+            raise CalibrationError("%s: not a JSON parameter file (%s)" % (path, e))
+    if not isinstance(doc, dict) or doc.get("format") != FILE_FORMAT:
+        raise CalibrationError("%s: format = %r, expected %r" % (path, doc.get("format") if isinstance(doc, dict)
+                                                                 else None, FILE_FORMAT))
+    if doc.get("version") != FILE_VERSION:
+        raise CalibrationError("%s: version = %r, this RockDEM reads version %d" % (path, doc.get("version"),
+                                                                                  FILE_VERSION))
+    for key in ("recipe", "parameters", "target", "tolerances"):
+        if not isinstance(doc.get(key), dict):
+            raise CalibrationError("%s: '%s' must be a dict" % (path, key))
+    for block, names in (("pack", PACK_PROPERTIES), ("cement", CEMENT_PROPERTIES)):
+        props = doc.get(block)
+        if not isinstance(props, dict):
+            raise CalibrationError("%s: '%s' must be a dict of properties" % (path, block))
+        for key, value in props.items():
+            if key not in names:
+                raise CalibrationError("%s: %s.%s = %r: unknown property; valid: %s"
+                                       % (path, block, key, value, ", ".join(names)))
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise CalibrationError("%s: %s.%s = %r: must be a finite number" % (path, block, key, value))
+    return doc
+
+
+def load_rock(name_or_path):
+    """A preset target: a path to a JSON file, or the name of one in Data/rocks/ (e.g.
+    'lac_du_bonnet_granite'). Returns the target dict (validated)."""
+    path = name_or_path
+    if not os.path.exists(path):
+        # embedded in the plugin the module has no __file__: $ROCKDEM_SOURCE_DIR, the
+        # checkout the file lies in, or the working directory
+        here = os.path.dirname(os.path.abspath(globals().get("__file__", os.getcwd())))
+        roots = [os.environ.get("ROCKDEM_SOURCE_DIR", ""), os.path.dirname(here), os.getcwd()]
+        for root in roots:
+            candidate = os.path.join(root, "Data", "rocks", name_or_path + ".json")
+            if root and os.path.exists(candidate):
+                path = candidate
+                break
+        else:
+            raise CalibrationError("rock %r: no such file, and no Data/rocks/%s.json under %s"
+                                   % (name_or_path, name_or_path, ", ".join(r for r in roots if r)))
+    with open(path) as f:
+        doc = json.load(f)
+    target = doc.get("target", doc)
+    return validate_target({k: v for k, v in target.items() if k in TARGET_KEYS})
+
+
+def _source(name):
+    """The constructor of a source loaded by the plugin (DEM Pack Source)."""
+    from paraview import servermanager, simple
+    return simple._create_func(name, servermanager.sources)
+
+
+def build_specimen(parameters, seed=None):
+    """The calibrated specimen in ParaView: DEM Pack Source (compacted) -> DEM Cement, from
+    a parameter file's path or its loaded dict. seed: another Random Seed for the pack and
+    the strength draw (a fresh specimen of the same rock). Returns (pack, cement)."""
+    import rockdem
+    doc = load_parameters(parameters) if isinstance(parameters, str) else parameters
+    pack_props, cement_props = dict(doc["pack"]), dict(doc["cement"])
+    if seed is not None:
+        pack_props["RandomSeed"] = cement_props["RandomSeed"] = int(seed)
+    pack = _source("DEMPackSource")(**pack_props)
+    pack.UpdatePipeline()
+    pack.InvokeCommand("CompactElements")
+    pack.UpdatePipeline()
+    cement = rockdem._filter("DEMCement")(Input=pack, **cement_props)
+    cement.UpdatePipeline()
+    return pack, cement
+
+
+# ---------------------------------------------------------------------------------------
+# The calibration itself (needs ParaView and the plugin).
+# ---------------------------------------------------------------------------------------
+
+def _errors(target, measured):
+    """Errors of the measured properties: relative for E, UCS, sigma_t; absolute for nu, phi."""
+    e = {}
+    for key in ("youngs_modulus", "ucs", "tensile_strength"):
+        if key in target and measured.get(key) is not None and math.isfinite(measured[key]):
+            e[key] = measured[key] / target[key] - 1.0
+    for key in ("poissons_ratio", "friction_angle"):
+        if key in target and measured.get(key) is not None and math.isfinite(measured[key]):
+            e[key] = measured[key] - target[key]
+    return e
+
+
+def cement_properties(p, recipe):
+    """DEM Cement properties of the calibration variables p (BondModulus,
+    BondStiffnessRatio, TensileStrength, CohesionRatio = Cohesion / Tensile Strength,
+    FrictionAngle) and the recipe's fixed ones."""
+    return {"BondModulus": p["BondModulus"], "BondStiffnessRatio": p["BondStiffnessRatio"],
+            "TensileStrength": p["TensileStrength"], "Cohesion": p["TensileStrength"] * p["CohesionRatio"],
+            "FrictionAngle": p["FrictionAngle"], "BondRange": recipe["bond_range"],
+            "MomentContribution": recipe["moment_contribution"], "StrengthScatter": recipe["strength_scatter"],
+            "RandomSeed": recipe["seed"]}
+
+
+class _Bench:
+    """One compacted pack (built once) and the tests on it."""
+
+    def __init__(self, target, recipe, log, grain_modulus=None):
+        from paraview import simple
+        import rockdem
+        self.rockdem = rockdem
+        self.simple = simple
+        self.recipe = recipe
+        self.target = target
+        self.log = log
+        n = recipe["elements"]
+        size = recipe["size"]
+        if size is None:
+            scale = (n / 10000.0) ** (1.0 / 3.0)
+            size = [0.05 * scale, 0.05 * scale, 0.10 * scale]
+        # the grains' modulus is tied to the Bond Modulus (_cemented); start at the target E
+        grain_e = float(grain_modulus or target.get("youngs_modulus", 1e9))
+        self.pack_props = {"XDimension": size[0], "YDimension": size[1], "ZDimension": size[2],
+                           "InitialElements": n, "MinimumSize": recipe["minimum_size"],
+                           "MaximumSize": recipe["maximum_size"], "TargetPorosity": recipe["target_porosity"],
+                           "RandomSeed": recipe["seed"], "Density": recipe["density"],
+                           "YoungsModulus": grain_e, "PoissonsRatio": 0.25,
+                           "Friction": recipe["grain_friction"]}
+        self.pack = _source("DEMPackSource")(**self.pack_props)
+        self.pack.UpdatePipeline()
+        if rockdem.read_only(self.pack, "NumberOfElements") == 0:
+            raise RuntimeError("the pack could not be built: " + rockdem.read_only(self.pack, "LastMessage"))
+        self.pack.InvokeCommand("CompactElements")
+        self.pack.UpdatePipeline()
+        self.porosity = rockdem.read_only(self.pack, "CurrentPorosity")
+        self.elements = rockdem.read_only(self.pack, "NumberOfElements")
+        self.cement = None
+        self.relax = None
+        self.tests = 0
+        self.packs = 1
+        self.coordination = float("nan")
+
+    def cement_props(self, p):
+        return cement_properties(p, self.recipe)
+
+    def _cemented(self, p):
+        """Re-cements the pack with the parameters p and relaxes it (no gravity)."""
+        for proxy in (self.relax, self.cement):
+            if proxy is not None:
+                self.simple.Delete(proxy)
+        rd = self.rockdem
+        if self.pack_props["YoungsModulus"] != p["BondModulus"]:
+            # The grains' Young's Modulus is tied to the Bond Modulus: the platen contacts
+            # and the contacts in parallel with the bonds are grain contacts, so with the
+            # grains left soft the specimen's E barely follows the bonds (measured: 4
+            # decades of Bond Modulus moved E 6 x). With both moduli equal, the forces at
+            # a given strain scale with the modulus (Hertz and bond forces are linear in
+            # it), E is proportional to it and the secant converges in a step. The pack
+            # is compacted again for the new modulus (Compact Elements depends on it).
+            self.pack_props["YoungsModulus"] = p["BondModulus"]
+            self.pack.YoungsModulus = p["BondModulus"]
+            self.pack.UpdatePipeline()
+            self.packs += 1
+            self.porosity = rd.read_only(self.pack, "CurrentPorosity")
+        self.cement = rd._filter("DEMCement")(Input=self.pack, **self.cement_props(p))
+        self.cement.UpdatePipeline()
+        if rd.read_only(self.cement, "Bonds") == 0:
+            raise RuntimeError("DEM Cement installed no bond: " + rd.read_only(self.cement, "LastMessage"))
+        self.coordination = rd.read_only(self.cement, "BondedCoordination")
+        # about 100 steps of relaxation (no gravity, walls at the box): the estimate of
+        # the step is the mass-spring limit of the smallest grain on a bond of its size
+        r = 0.5 * self.recipe["minimum_size"]
+        mass = self.recipe["density"] * 4.0 / 3.0 * math.pi * r ** 3
+        stiffness = max(p["BondModulus"], self.pack_props["YoungsModulus"]) * math.pi * r / 2.0
+        step = self.recipe["timestep_safety"] * math.sqrt(mass / stiffness)
+        self.relax = rd._filter("DEMLoadTest")(Input=self.cement, Gravity=[0, 0, 0], FrameInterval=100 * step,
+                                               NumberOfFrames=1, TimestepSafety=self.recipe["timestep_safety"])
+        self.relax.UpdatePipeline(self.relax.TimestepValues[-1])
+        self.timestep = rd.read_only(self.relax, "Timestep")
+        return self.relax
+
+    def _press(self, mode, max_strain, stop_below, **extra):
+        rate = self.recipe["strain_per_step"] / self.timestep
+        frames = 20
+        duration = 1.02 * max_strain / rate
+        if mode == "Triaxial":
+            # the consolidation comes first (rockdem.run_test's allowance: as much again)
+            frames, duration = 40, 2.0 * duration
+        props = dict(StrainRate=rate, MaxStrain=max_strain, TimestepSafety=self.recipe["timestep_safety"],
+                     FrameInterval=duration / frames, NumberOfFrames=frames, SampleInterval=10,
+                     stop_below=stop_below)
+        props.update(extra)
+        return props
+
+    def compression(self, p, max_strain, elastic=False):
+        """Unconfined compression: E, nu and (unless elastic) UCS. Elastic: the bonds are
+        made 1e3 x stronger so that none breaks within max_strain."""
+        q = dict(p)
+        if elastic:
+            q["TensileStrength"] = p["TensileStrength"] * 1e3
+        model = self._cemented(q)
+        self.tests += 1
+        result = self.rockdem.ucs_test(model, **self._press("Compression", max_strain, None if elastic else 0.7))
+        self.simple.Delete(result["proxy"])
+        return result
+
+    def tension(self, p, max_strain):
+        model = self._cemented(p)
+        self.tests += 1
+        kind = self.target.get("tensile_test", "direct")
+        if kind != "direct":
+            raise CalibrationError("tensile_test = %r: valid: %s" % (kind, ", ".join(TENSILE_TESTS)))
+        result = self.rockdem.tension_test(model, **self._press("Tension", max_strain, 0.5))
+        self.simple.Delete(result["proxy"])
+        return result
+
+    def triaxial(self, p, confining, max_strain):
+        """Peaks at each confining stress on one cemented model and their Mohr-Coulomb fit.
+        A confining stress of 0 is an unconfined compression (DEM Load Test's Triaxial
+        mode needs a Confining Stress > 0)."""
+        rd = self.rockdem
+        model = self._cemented(p)
+        results = []
+        for s3 in confining:
+            self.tests += 1
+            if s3 == 0:
+                r = rd.ucs_test(model, **self._press("Compression", max_strain, 0.7))
+                test, history, peak = r["proxy"], r["history"], r["ucs"]
+            else:
+                test, history = rd.run_test(model, "Triaxial", ConfiningStress=float(s3),
+                                            **self._press("Triaxial", max_strain, 0.8))
+                peak = rd.peak_values(history)[0]
+            results.append({"confining": float(s3), "peak_axial": peak, "history": history})
+            self.simple.Delete(test)
+        try:
+            cohesion, phi = rd.fit_mohr_coulomb([r["confining"] for r in results],
+                                                [r["peak_axial"] for r in results])
+        except ValueError:
+            cohesion, phi = float("nan"), float("nan")
+        return results, cohesion, phi
+
+    def close(self):
+        for proxy in (self.relax, self.cement, self.pack):
+            if proxy is not None:
+                self.simple.Delete(proxy)
+        self.relax = self.cement = self.pack = None
+
+
+def _ucs_strain(target):
+    """Max Strain of a compression to failure: 6 x UCS / E, in [0.005, 0.03]."""
+    return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
+
+
+def _tension_strain(target):
+    """Max Strain of a direct tension: 4 x sigma_t / E, in [0.002, 0.01]."""
+    return min(0.01, max(0.002, 4.0 * target.get("tensile_strength", 0.0) / target.get("youngs_modulus", 1e300)))
+
+
+def verify(parameters, seeds=(2, 3, 4), progress=None):
+    """The calibrated parameters on fresh specimens: for each Random Seed, a new pack of the
+    calibration's recipe, cemented with the calibrated parameters, tested as in the
+    strength stage (unconfined compression and the target's tensile test). Returns a list
+    of {seed, measured, errors} (errors against the calibration's target)."""
+    doc = load_parameters(parameters) if isinstance(parameters, str) else parameters
+    target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
+    out = []
+    for seed in seeds:
+        recipe = validate_recipe(dict(doc["recipe"], seed=int(seed)))
+        bench = _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+        try:
+            m = {}
+            if "ucs" in target or "youngs_modulus" in target or "poissons_ratio" in target:
+                rc = bench.compression(doc["parameters"], _ucs_strain(target))
+                m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
+            if "tensile_strength" in target:
+                m["tensile_strength"] = bench.tension(doc["parameters"], _tension_strain(target))["tensile_strength"]
+            rec = {"seed": int(seed), "measured": m, "errors": _errors(target, m),
+                   "bonded_coordination": bench.coordination, "porosity": bench.porosity}
+        finally:
+            bench.close()
+        out.append(rec)
+        if progress:
+            progress(rec)
+    return out
+
+
+def calibrate(target, recipe=None, progress=None, output=None, bench=None):
+    """Calibrates DEM Cement parameters to a rock's lab properties (see the module doc).
+
+    target: dict (or a preset name / JSON path, see load_rock) with any of youngs_modulus
+    (Pa), poissons_ratio, ucs (Pa), tensile_strength (Pa) with tensile_test ('direct'),
+    friction_angle (deg) with confining_stresses (Pa), tolerances.
+    recipe: dict, keys in RECIPE_DEFAULTS (elements, sizes, seed, bond_range, max_tests...).
+    progress: called after every specimen test with a dict: test (number), stage,
+    parameters (the cement properties tried), measured, errors.
+    output: a folder; when given, writes iterations.csv (every test), parameters.json
+    (load_parameters reads it back), ucs_history.csv and tension_history.csv (the final
+    tests' curves), stress_strain.png and envelope.png (matplotlib).
+
+    bench: what runs the specimen tests; None (the default) builds the recipe's pack in
+    ParaView. The tests of the method pass a synthetic model of the property relations
+    with the same methods (compression, tension, triaxial, close; tests,
+    coordination, porosity, elements, pack_props attributes).
+
+    Returns a dict: converged (bool), unreachable (list of target keys), parameters,
+    pack and cement (property dicts), measured, errors, tests, iterations (list of the
+    progress dicts), histories (final tests), seconds.
+    """
+    import time
+    t_start = time.time()
+    if isinstance(target, str):
+        target = load_rock(target)
+    target = validate_target(target)
+    recipe = validate_recipe(recipe)
+    tol = target["tolerances"]
+    iterations = []
+    histories = {}
+
+    bench = bench if bench is not None else _Bench(target, recipe, None)
+    e_t = target.get("youngs_modulus")
+    ucs_t = target.get("ucs")
+    st_t = target.get("tensile_strength")
+    # Start: Bond Modulus = grain modulus = target E; default stiffness ratio; strengths at
+    # a tenth of the UCS (compact bonded packs give UCS of several times the bond tensile
+    # strength: Rock.md); Cohesion = 2 x Tensile; bond friction 30 deg.
+    p = {"BondModulus": e_t or 1e9, "BondStiffnessRatio": 0.4,
+         "TensileStrength": (ucs_t / 10.0) if ucs_t else (st_t or 1e6),
+         "CohesionRatio": 2.0, "FrictionAngle": 30.0}
+    measured = {}
+    unreachable = set()
+    max_tests = recipe["max_tests"]
+
+    def report(stage, kind, result_measured):
+        measured.update({k: v for k, v in result_measured.items() if v is not None})
+        errs = _errors(target, result_measured)
+        rec = {"test": bench.tests, "stage": stage, "kind": kind, "parameters": cement_properties(p, recipe),
+               "measured": dict(result_measured), "errors": errs,
+               "bonded_coordination": bench.coordination, "seconds": time.time() - t_start}
+        iterations.append(rec)
+        if progress:
+            progress(rec)
+        return errs
+
+    def within(errs, keys):
+        return all(k in errs and abs(errs[k]) <= tol[k] for k in keys if k in target)
+
+    elastic_strain = 0.25 * (ucs_t / e_t) if (ucs_t and e_t) else 2e-4
+    elastic_strain = min(max(elastic_strain, 1e-4), 2e-3)
+    stiff_keys = [k for k in ("youngs_modulus", "poissons_ratio") if k in target]
+    strength_keys = [k for k in ("ucs", "tensile_strength") if k in target]
+    env_keys = ["friction_angle"] if "friction_angle" in target else []
+
+    def stiffness_solvers():
+        lo, hi = BRACKETS["BondStiffnessRatio"]
+        return (SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None,
+                SecantSolver(target["poissons_ratio"], math.log(lo), math.log(hi), slope_guess=-0.05,
+                             max_step=math.log(3.0)) if "poissons_ratio" in target else None)
+
+    def stiffness_step(solvers, m, errs):
+        """Secant updates of Bond Modulus (E) and Bond Stiffness Ratio (nu) from one test;
+        True when both are within tolerance (or nu is unreachable)."""
+        e_solver, nu_solver = solvers
+        done = True
+        if e_solver:
+            if "youngs_modulus" not in errs:
+                raise RuntimeError("the compression gave no Young's modulus (too few history rows "
+                                   "below the peak): %s" % m)
+            if abs(errs["youngs_modulus"]) > tol["youngs_modulus"]:
+                e_solver.add(math.log(p["BondModulus"]), math.log(m["youngs_modulus"]))
+                p["BondModulus"] = math.exp(e_solver.next_x())
+                done = False
+        if nu_solver and "poissons_ratio" not in unreachable and "poissons_ratio" in errs and \
+                abs(errs["poissons_ratio"]) > tol["poissons_ratio"]:
+            nu_solver.add(math.log(p["BondStiffnessRatio"]), m["poissons_ratio"])
+            x = nu_solver.next_x()
+            if nu_solver.unreachable:
+                unreachable.add("poissons_ratio")
+            else:
+                p["BondStiffnessRatio"] = math.exp(x)
+                done = False
+        return done
+
+    for _round in range(4):
+        # ---- 1. stiffness ------------------------------------------------------------
+        if stiff_keys:
+            solvers = stiffness_solvers()
+            while bench.tests < max_tests:
+                r = bench.compression(p, elastic_strain, elastic=True)
+                m = {"youngs_modulus": r["E"], "poissons_ratio": r["nu"]}
+                errs = report("stiffness", "elastic compression", m)
+                if stiffness_step(solvers, m, errs):
+                    break
+        # ---- 2. strength ---------------------------------------------------------------
+        # Every compression to failure measures E and nu too (the laboratory's values, in
+        # the window below the peak); they keep being matched here, jointly with the
+        # strengths (one secant per variable, all updated after each test).
+        if strength_keys:
+            solvers = stiffness_solvers()
+            s_solver = SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
+            lo, hi = BRACKETS["CohesionRatio"]
+            q_solver = SecantSolver(ucs_t / st_t, lo, hi, slope_guess=1.5, max_step=1.0) \
+                if (ucs_t and st_t) else None
+            while bench.tests < max_tests:
+                ucs_strain = _ucs_strain(target)
+                m = {}
+                if ucs_t:
+                    rc = bench.compression(p, ucs_strain)
+                    m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
+                    histories["ucs"] = rc["history"]
+                if st_t:
+                    rt = bench.tension(p, _tension_strain(target))
+                    m["tensile_strength"] = rt["tensile_strength"]
+                    histories["tension"] = rt["history"]
+                errs = report("strength", "compression" + (" + %s tension" % target["tensile_test"] if st_t else ""),
+                              m)
+                done = True
+                if ucs_t:
+                    done = stiffness_step(solvers, m, errs)
+                if s_solver and abs(errs["ucs"]) > tol["ucs"]:
+                    s_solver.add(math.log(p["TensileStrength"]), math.log(m["ucs"]))
+                    p["TensileStrength"] = math.exp(s_solver.next_x())
+                    done = False
+                elif not ucs_t and abs(errs["tensile_strength"]) > tol["tensile_strength"]:
+                    p["TensileStrength"] *= st_t / m["tensile_strength"]
+                    done = False
+                if q_solver and "tensile_strength" not in unreachable and \
+                        abs(errs["tensile_strength"]) > tol["tensile_strength"]:
+                    q_solver.add(p["CohesionRatio"], m["ucs"] / m["tensile_strength"])
+                    x = q_solver.next_x()
+                    if q_solver.unreachable:
+                        unreachable.add("tensile_strength")
+                    else:
+                        p["CohesionRatio"] = x
+                        done = False
+                if done:
+                    break
+        # ---- 3. envelope ---------------------------------------------------------------
+        if env_keys:
+            lo, hi = BRACKETS["FrictionAngle"]
+            f_solver = SecantSolver(target["friction_angle"], lo, hi, slope_guess=0.5, max_step=20.0)
+            confining = list(target["confining_stresses"])
+            while bench.tests + len(confining) <= max_tests:
+                results, coh, phi = bench.triaxial(p, confining, min(0.03, max(0.005, 8.0 * (ucs_t or 0.0) / (e_t or 1e300))))
+                histories["triaxial"] = results
+                errs = report("envelope", "triaxial x %d" % len(confining),
+                              {"friction_angle": phi, "cohesion": coh,
+                               "triaxial_peaks": [r["peak_axial"] for r in results]})
+                if "friction_angle" not in errs:
+                    unreachable.add("friction_angle")
+                    break
+                if abs(errs["friction_angle"]) <= tol["friction_angle"]:
+                    break
+                f_solver.add(p["FrictionAngle"], phi)
+                x = f_solver.next_x()
+                if f_solver.unreachable:
+                    unreachable.add("friction_angle")
+                    break
+                p["FrictionAngle"] = x
+        # ---- all together? ---------------------------------------------------------------
+        last = {}
+        for rec in iterations:
+            last.update(rec["errors"])
+        keys = [k for k in stiff_keys + strength_keys + env_keys if k not in unreachable]
+        if within(last, keys) or bench.tests >= max_tests:
+            break
+        # a later stage moved an earlier one's property: go round again from stiffness
+    final_errors = {}
+    for rec in iterations:
+        final_errors.update(rec["errors"])
+    all_keys = stiff_keys + strength_keys + env_keys
+    converged = within(final_errors, all_keys) and not unreachable
+    not_within = sorted(k for k in all_keys if not (k in final_errors and abs(final_errors[k]) <= tol[k]))
+    result = {"converged": converged, "unreachable": sorted(unreachable), "not_within": not_within,
+              "parameters": dict(p), "pack": dict(bench.pack_props),
+              "cement": cement_properties(p, recipe),
+              "test": {"strain_per_step": recipe["strain_per_step"], "timestep_safety": recipe["timestep_safety"]},
+              "measured": {k: v for k, v in measured.items() if k != "triaxial_peaks"},
+              "errors": final_errors, "tests": bench.tests, "iterations": iterations,
+              "histories": histories, "packs": getattr(bench, "packs", 1), "porosity": bench.porosity, "elements": bench.elements,
+              "bonded_coordination": bench.coordination, "target": target, "recipe": recipe,
+              "seconds": time.time() - t_start}
+    if output:
+        write_outputs(result, output)
+    bench.close()
+    return result
+
+
+ITERATION_COLUMNS = ("test", "stage", "kind", "BondModulus", "BondStiffnessRatio", "TensileStrength",
+                     "Cohesion", "FrictionAngle", "bonded_coordination", "youngs_modulus", "poissons_ratio",
+                     "ucs", "tensile_strength", "friction_angle", "err_youngs_modulus", "err_poissons_ratio",
+                     "err_ucs", "err_tensile_strength", "err_friction_angle", "seconds")
+
+
+def iteration_rows(iterations):
+    """The iteration table (ITERATION_COLUMNS) as lists of strings."""
+    rows = []
+    for rec in iterations:
+        row = []
+        for col in ITERATION_COLUMNS:
+            if col in rec["parameters"]:
+                v = rec["parameters"][col]
+            elif col.startswith("err_"):
+                v = rec["errors"].get(col[4:], "")
+            elif col in rec["measured"]:
+                v = rec["measured"][col]
+            else:
+                v = rec.get(col, "")
+            row.append(("%.6g" % v) if isinstance(v, float) else str(v))
+        rows.append(row)
+    return rows
+
+
+def _write_csv(path, header, rows):
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(",".join(header) + "\n")
+        for row in rows:
+            f.write(",".join(row) + "\n")
+    os.replace(tmp, path)
+
+
+def write_outputs(result, folder):
+    """Writes the calibration's files into folder (see calibrate)."""
+    os.makedirs(folder, exist_ok=True)
+    _write_csv(os.path.join(folder, "iterations.csv"), ITERATION_COLUMNS, iteration_rows(result["iterations"]))
+    save_parameters(os.path.join(folder, "parameters.json"), result)
+    for name in ("ucs", "tension"):
+        h = result["histories"].get(name)
+        if h:
+            cols = list(h.keys())
+            n = len(h[cols[0]])
+            _write_csv(os.path.join(folder, name + "_history.csv"), ['"%s"' % c for c in cols],
+                       [["%.9g" % h[c][i] for c in cols] for i in range(n)])
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return
+    # stress-strain curves of the final tests
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, label in (("ucs", "unconfined compression"), ("tension", "direct tension")):
+        h = result["histories"].get(name)
+        if h and "Axial Stress (Pa)" in h:
+            axis = "Strain Z"
+            ax.plot(100.0 * h[axis], h["Axial Stress (Pa)"] / 1e6, label=label)
+    ax.axhline(result["target"].get("ucs", float("nan")) / 1e6, ls="--", color="C0", lw=0.8, label="target UCS")
+    if "tensile_strength" in result["target"]:
+        ax.axhline(-result["target"]["tensile_strength"] / 1e6, ls="--", color="C1", lw=0.8,
+                   label="target tensile strength")
+    ax.set_xlabel("axial strain (%, shortening positive)")
+    ax.set_ylabel("axial stress (MPa, compression positive)")
+    ax.set_title("final tests: %s" % (result["target"].get("name") or "calibration"))
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "stress_strain.png"), dpi=110)
+    plt.close(fig)
+    # envelope in principal stresses: target points/line against the calibrated ones
+    t, m = result["target"], result["measured"]
+    fig, ax = plt.subplots(figsize=(6, 5))
+    top = 1.2 * max(t.get("ucs", 0), m.get("ucs", 0), 1.0)
+    smax = max(list(t.get("confining_stresses", [])) + [0.25 * top])
+    xs = [-(t.get("tensile_strength") or 0), smax]
+    if "friction_angle" in t:
+        a, b = _mohr_coulomb_line_from(t)
+        ax.plot([x / 1e6 for x in xs], [(a + b * x) / 1e6 for x in xs], "k--", lw=0.8,
+                label="target envelope (phi %.1f deg)" % t["friction_angle"])
+    if "ucs" in t:
+        ax.plot([0], [t["ucs"] / 1e6], "ks", mfc="none", label="target UCS")
+    if "tensile_strength" in t:
+        ax.plot([-t["tensile_strength"] / 1e6], [0], "k^", mfc="none", label="target tensile strength")
+    if "ucs" in m:
+        ax.plot([0], [m["ucs"] / 1e6], "rs", label="calibrated UCS")
+    if "tensile_strength" in m:
+        ax.plot([-m["tensile_strength"] / 1e6], [0], "r^", label="calibrated tensile strength")
+    tri = result["histories"].get("triaxial")
+    if tri and math.isfinite(m.get("friction_angle", float("nan"))) and math.isfinite(m.get("cohesion", float("nan"))):
+        a, b = _mohr_coulomb_line_from({"friction_angle": m["friction_angle"], "cohesion": m["cohesion"]})
+        ax.plot([x / 1e6 for x in xs], [(a + b * x) / 1e6 for x in xs], "r-", lw=0.8,
+                label="calibrated envelope (fit)")
+    if tri:
+        ax.plot([r["confining"] / 1e6 for r in tri], [r["peak_axial"] / 1e6 for r in tri], "ro",
+                label="calibrated triaxial peaks (phi %.1f deg)" % m.get("friction_angle", float("nan")))
+    ax.set_xlabel("sigma3 (MPa)")
+    ax.set_ylabel("sigma1 at failure (MPa)")
+    ax.set_title("envelope: target (black) and calibrated (red)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "envelope.png"), dpi=110)
+    plt.close(fig)
+
+
+def _mohr_coulomb_line_from(target):
+    """(a, b) of the target envelope sigma1 = a + b sigma3: b from the friction angle, a
+    from the UCS (or from the cohesion when given)."""
+    s = math.sin(math.radians(target["friction_angle"]))
+    b = (1.0 + s) / (1.0 - s)
+    if "cohesion" in target:
+        a = 2.0 * target["cohesion"] * math.cos(math.radians(target["friction_angle"])) / (1.0 - s)
+    else:
+        a = target.get("ucs", 0.0)
+    return a, b

@@ -1,0 +1,56 @@
+"""pvpython: one small end-to-end calibration (Documentation/Calibration.md).
+
+A tiny specimen (300 grains) is calibrated to a Young's modulus of 100 MPa and a UCS of
+1 MPa, which the model reaches (soft moduli keep the steps long, Rock.md; the number of
+steps to failure does not depend on the modulus). The starting parameters give about
+20 % of that E and 30 % of that UCS, so both secant loops have to move. Checks: converged; the final errors within the stated tolerances (5 %);
+the number of specimen tests bounded (<= 12); one progress record per test; the files
+(iterations.csv with a row per record, parameters.json that load_parameters reads back);
+the parameter file rebuilds the calibrated specimen (build_specimen: the same bonded
+coordination, the same seed).
+"""
+import os
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rockdem_test_support import Checks, load_rockdem  # noqa: E402
+
+from paraview.simple import *  # noqa: E402,F401,F403
+
+load_rockdem(globals())
+import rockdem  # noqa: E402
+
+c = Checks()
+t0 = time.time()
+TARGET = {"name": "CI rock", "youngs_modulus": 1.0e8, "ucs": 1.0e6}
+RECIPE = {"elements": 300, "seed": 3, "max_tests": 12}
+records = []
+out = tempfile.mkdtemp(prefix="rockdem_calibration_")
+res = rockdem.calibrate(TARGET, RECIPE, progress=records.append, output=out)
+for rec in records:
+    print("test %d %s: %s -> %s" % (rec["test"], rec["stage"], {k: "%.4g" % v for k, v in rec["parameters"].items()},
+                                    {k: "%.4g" % v for k, v in rec["errors"].items()}))
+c.check(res["converged"], "converged after %d specimen tests in %.1f s (%d grains, coordination %.2f, %d packs)"
+        % (res["tests"], res["seconds"], res["elements"], res["bonded_coordination"], res["packs"]))
+for key in ("youngs_modulus", "ucs"):
+    err = res["errors"].get(key, float("nan"))
+    c.check(abs(err) <= 0.05, "%s: measured %.4g, target %.4g, error %+.4f within 0.05"
+            % (key, res["measured"][key], TARGET[key], err))
+c.check(res["tests"] <= RECIPE["max_tests"], "%d specimen tests <= %d" % (res["tests"], RECIPE["max_tests"]))
+c.check(len(records) == len(res["iterations"]) >= 2 and records[0]["stage"] == "stiffness",
+        "progress: %d records, stiffness first" % len(records))
+with open(os.path.join(out, "iterations.csv")) as f:
+    rows = f.read().splitlines()
+c.check(len(rows) == 1 + len(records), "iterations.csv: %d rows for %d records" % (len(rows) - 1, len(records)))
+doc = rockdem.load_parameters(os.path.join(out, "parameters.json"))
+c.check(doc["cement"] == res["cement"] and doc["converged"], "parameters.json reads back: %s" % doc["cement"])
+c.check(os.path.exists(os.path.join(out, "ucs_history.csv")), "the final UCS test's curve is written")
+# the parameter file rebuilds the same specimen: the same UCS
+pack, cement = rockdem.build_specimen(doc)
+c.check(rockdem.read_only(cement, "Bonds") > 0 and abs(rockdem.read_only(cement, "BondedCoordination")
+                                                     - res["bonded_coordination"]) < 1e-12,
+        "build_specimen: the same bonded coordination %.4f" % rockdem.read_only(cement, "BondedCoordination"))
+print("total %.1f s" % (time.time() - t0))
+c.finish()
