@@ -131,6 +131,13 @@ public:
   ///@}
 
   ///@{
+  /// Coulomb friction between the grains and the two platens, dimensionless, [0, 1]
+  /// (default 0: lubricated platens; the side walls are always frictionless).
+  vtkSetMacro(PlatenFriction, double);
+  vtkGetMacro(PlatenFriction, double);
+  ///@}
+
+  ///@{
   /// Optional CSV file the history is written to after every update (empty: none).
   vtkSetStringMacro(HistoryFile);
   vtkGetStringMacro(HistoryFile);
@@ -336,6 +343,7 @@ protected:
   double ServoAlpha = 0.5;
   int SampleInterval = 100;
   double GripLength = 1.0;
+  double PlatenFriction = 0.0;
   char* HistoryFile = nullptr;
   char* CheckpointFile = nullptr;
   int CheckpointEvery = 0;

@@ -162,7 +162,7 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
   const dem::LoadTestSettings& s = t.settings;
   AddField(fd, "TestSettings", { static_cast<double>(s.mode), static_cast<double>(s.axis),
     s.confiningStress, s.strainRate, s.maxStrain, s.servoAlpha, static_cast<double>(s.sampleInterval),
-    s.settleTolerance, s.gripLength });
+    s.settleTolerance, s.gripLength, s.platenFriction });
   AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
     t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
     static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample), t.initialSpread[0],
@@ -182,21 +182,22 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
 {
   auto value = [&](const char* name, int k, int n) { return Field(fd, name, k, n); };
   dem::LoadTestSettings& s = t.settings;
-  const double mode = value("TestSettings", 0, 9);
+  const double mode = value("TestSettings", 0, 10);
   if (!(mode >= 0 && mode <= 5))
   {
     throw dem::InputError("RockDEM model array 'TestSettings' has an unknown mode " +
       dem::formatValue(mode) + ".");
   }
   s.mode = static_cast<dem::TestMode>(static_cast<int>(mode));
-  s.axis = static_cast<int>(value("TestSettings", 1, 9));
-  s.confiningStress = value("TestSettings", 2, 9);
-  s.strainRate = value("TestSettings", 3, 9);
-  s.maxStrain = value("TestSettings", 4, 9);
-  s.servoAlpha = value("TestSettings", 5, 9);
-  s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 9));
-  s.settleTolerance = value("TestSettings", 7, 9);
-  s.gripLength = value("TestSettings", 8, 9);
+  s.axis = static_cast<int>(value("TestSettings", 1, 10));
+  s.confiningStress = value("TestSettings", 2, 10);
+  s.strainRate = value("TestSettings", 3, 10);
+  s.maxStrain = value("TestSettings", 4, 10);
+  s.servoAlpha = value("TestSettings", 5, 10);
+  s.sampleInterval = static_cast<std::int64_t>(value("TestSettings", 6, 10));
+  s.settleTolerance = value("TestSettings", 7, 10);
+  s.gripLength = value("TestSettings", 8, 10);
+  s.platenFriction = value("TestSettings", 9, 10);
   const double stage = value("TestState", 0, 12);
   if (!(stage >= 0 && stage <= 3))
   {

@@ -66,6 +66,7 @@ void validate(const LoadTestSettings& s)
   if (s.mode == TestMode::Tension) {
     requirePositive("Grip Length", s.gripLength, "largest particle diameters");
   }
+  requireInRange("Platen Friction", s.platenFriction, 0.0, 1.0);
   if (s.sampleInterval < 1) {
     throw InputError("Sample Interval = " + std::to_string(s.sampleInterval) +
                      " is out of range: it must be 1 or more steps.");
@@ -77,7 +78,7 @@ bool operator==(const LoadTestSettings& a, const LoadTestSettings& b)
   return a.mode == b.mode && a.axis == b.axis && a.confiningStress == b.confiningStress &&
     a.strainRate == b.strainRate && a.maxStrain == b.maxStrain && a.servoAlpha == b.servoAlpha &&
     a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance &&
-    a.gripLength == b.gripLength;
+    a.gripLength == b.gripLength && a.platenFriction == b.platenFriction;
 }
 
 bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings)

@@ -198,6 +198,11 @@ void visitModel(IO& io, Model& m)
   } else {
     ts.gripLength = 1.0; // files written before Grip Length: the grip was one largest diameter
   }
+  if (io.has("test/settings/platen_friction")) {
+    io.f64("test/settings/platen_friction", ts.platenFriction, "1");
+  } else {
+    ts.platenFriction = 0.0; // files written before Platen Friction: frictionless platens
+  }
   LoadTestState& t = m.test;
   io.enumeration("test/state/stage", t.stage, static_cast<int>(TestStage::Done));
   io.doubles3("test/state/initial_length", t.initialLength, "m");

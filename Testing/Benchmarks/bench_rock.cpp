@@ -56,6 +56,7 @@ struct Options {
   double safety = 0.3;
   double damping = 0.7;
   double maxStrain = 0.03;
+  double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
   std::string tests = "ucs,tension";
   std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
   std::uint64_t seed = 1;
@@ -74,7 +75,8 @@ Options parse(int argc, char** argv)
     { "--tensile", &o.tensile }, { "--cohesion", &o.cohesion }, { "--bond-friction", &o.bondFriction },
     { "--moment-contribution", &o.beta },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
-    { "--damping", &o.damping }, { "--max-strain", &o.maxStrain } };
+    { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
+    { "--platen-friction", &o.platenFriction } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -194,6 +196,8 @@ struct TestResult {
   double largestDisc = 0.0;   // m
   double discShare = 0.0;     // broken bonds in discs / broken bonds
   double strainAt70 = 0.0;
+  std::size_t brokenAtPeak = 0; // broken bonds at the sample of the peak stress
+  std::string damage;           // damageBreakdown at the end
   bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
 };
 
@@ -225,6 +229,64 @@ double platenShare(const Model& m, bool profile)
     std::printf("\n");
   }
   return all ? static_cast<double>(near) / all : 0.0;
+}
+
+/// Where and how the bonds broke (the localisation measurements of Rock.md): the share of
+/// tensile failures, of long bonds (a gap at cementing) among the broken and among all
+/// bonds, and of the outer grain layer (grains whose centre lies within one mean diameter
+/// of a side face of the specimen as cemented): its share of the broken bonds and of all
+/// bonds, and the bonded coordination of its grains against the inner grains'.
+std::string damageBreakdown(const Model& cemented, const Model& failed)
+{
+  const Particles& p = cemented.particles;
+  std::unordered_map<std::int64_t, std::size_t> slot;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    slot[p.id[i]] = i;
+  }
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    lo = lo.cwiseMin(p.position[i]);
+    hi = hi.cwiseMax(p.position[i]);
+  }
+  const double d = meanParticleDiameter(cemented);
+  std::vector<std::uint8_t> skin(p.size(), 0);
+  std::size_t skinGrains = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.position[i];
+    skin[i] = (x.x() - lo.x() < d || hi.x() - x.x() < d || x.y() - lo.y() < d || hi.y() - x.y() < d) ? 1 : 0;
+    skinGrains += skin[i];
+  }
+  const Bonds& b = failed.bonds;
+  std::size_t broken = 0, tensile = 0, longAll = 0, longBroken = 0, skinAll = 0, skinBroken = 0;
+  std::size_t skinEnds = 0, innerEnds = 0;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const std::size_t i = slot.at(b.idA[k]);
+    const std::size_t j = slot.at(b.idB[k]);
+    const double gap = minimumImage(cemented.domain, p.position[i], p.position[j]).norm() - p.radius[i] - p.radius[j];
+    const bool isLong = gap > 0.0;
+    const bool inSkin = skin[i] || skin[j];
+    skinEnds += skin[i] + skin[j];
+    innerEnds += 2 - skin[i] - skin[j];
+    longAll += isLong;
+    skinAll += inSkin;
+    if (b.broken(k)) {
+      ++broken;
+      tensile += b.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
+      longBroken += isLong;
+      skinBroken += inSkin;
+    }
+  }
+  const auto pct = [](std::size_t a, std::size_t n) { return n ? 100.0 * static_cast<double>(a) / n : 0.0; };
+  char line[600];
+  std::snprintf(line, sizeof line,
+    "damage: %zu broken (%.1f %% of bonds): %.1f %% in tension; %.1f %% long bonds (long: %.1f %% of all bonds, %.1f %% of them broken, contact bonds %.1f %%); "
+    "outer grain layer (%zu grains within one diameter of a side face, coordination %.2f against %.2f inside): %.1f %% of the broken bonds, %.1f %% of all bonds, %.1f %% of its bonds broken (inside %.1f %%)",
+    broken, pct(broken, b.size()), pct(tensile, broken), pct(longBroken, broken), pct(longAll, b.size()),
+    pct(longBroken, longAll), pct(broken - longBroken, b.size() - longAll), skinGrains,
+    skinGrains ? static_cast<double>(skinEnds) / skinGrains : 0.0,
+    p.size() > skinGrains ? static_cast<double>(innerEnds) / (p.size() - skinGrains) : 0.0,
+    pct(skinBroken, broken), pct(skinAll, b.size()), pct(skinBroken, skinAll), pct(broken - skinBroken, b.size() - skinAll));
+  return line;
 }
 
 /// Least-squares slope of y on x.
@@ -293,6 +355,7 @@ std::string randomDamageControl(Model m)
 /// tension), the shear stage's max strain, or the test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse)
 {
+  const Model start0 = m;
   TestResult r;
   const auto start = std::chrono::steady_clock::now();
   LoadTestSettings s;
@@ -301,6 +364,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   s.confiningStress = confining > 0.0 ? confining : 1e6;
   s.maxStrain = o.maxStrain;
   s.sampleInterval = 50;
+  s.platenFriction = mode == TestMode::Tension ? 0.0 : o.platenFriction;
   startLoadTest(m, s);
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
@@ -328,6 +392,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     if (sigma > r.peak) {
       r.peak = sigma;
       r.peakStrain = e;
+      r.brokenAtPeak = countBonds(m.bonds).broken;
     }
     if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
@@ -353,6 +418,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   }
   r.broken = countBonds(m.bonds).broken;
   if (analyse) {
+    r.damage = damageBreakdown(start0, m);
     r.nearPlatens = platenShare(m, o.profile);
     const FractureNetwork dfn = extractFractures(m, FractureParameters{});
     r.discs = dfn.discs.size();
@@ -407,6 +473,8 @@ int main(int argc, char** argv)
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
                 u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
+    std::printf("  broken at the peak: %zu (%.1f %% of bonds)\n  %s\n", u.brokenAtPeak,
+                100.0 * u.brokenAtPeak / cemented.bonds, u.damage.c_str());
     if (!u.peaked) {
       std::printf("  no peak: the stress did not fall to 70 %% of its largest value within Max Strain %g\n", o.maxStrain);
     }

@@ -7,6 +7,7 @@
 #include "dem/LoadTest.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "DynamicsFixtures.h"
 #include "Specimens.h"
 
 #include <gtest/gtest.h>
@@ -206,6 +207,65 @@ TEST(Press, BadSettingsAreNamed)
   s.confiningStress = 1e5;
   s.servoAlpha = 1.5;
   EXPECT_THROW(startLoadTest(m, s), InputError);
+}
+
+// Platen Friction out of [0, 1] (or NaN) is refused, naming the parameter, its value and
+// the valid range.
+TEST(Press, PlatenFrictionOutOfRangeIsNamed)
+{
+  Model m = specimen(100, 0.02, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  for (double bad : { -0.1, 1.5, std::nan("") }) {
+    s.platenFriction = bad;
+    try {
+      startLoadTest(m, s);
+      FAIL() << "Platen Friction " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Platen Friction = "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is out of range: valid range is [0, 1]"), std::string::npos) << e.what();
+    }
+  }
+  s.platenFriction = 1.0;
+  EXPECT_NO_THROW(startLoadTest(m, s));
+}
+
+// Platen Friction acts on the platens with the Coulomb coefficient given. Reference: a
+// solid sphere sliding on a floor with friction mu decelerates at mu g while it slides
+// and rolls on at 5/7 of its initial speed (rigid-body mechanics, e.g. Goldsmith 1960);
+// on a frictionless platen it keeps its speed.
+TEST(Press, PlatenFrictionIsCoulombFrictionOnThePlatens)
+{
+  const double v0 = 0.1; // m/s along X
+  const double r = 0.001;
+  const double g = 9.81;
+  for (double mu : { 0.0, 0.3 }) {
+    Model m = emptyModel(1e8, 0.3, 2600.0, 0.5, 0.02);
+    m.gravity = Vec3(0.0, 0.0, -g);
+    addSphere(m, Vec3(-0.008, 0.0, -0.01 + r), r, Vec3(v0, 0.0, 0.0));
+    LoadTestSettings s;
+    s.mode = TestMode::Compression; // platens on Z at the sphere's extent; no side walls
+    s.strainRate = 1e-6;            // the upper platen hardly moves
+    s.maxStrain = 0.5;
+    s.platenFriction = mu;
+    startLoadTest(m, s);
+    Simulation sim(m);
+    const double dt = sim.timestep();
+    const double tSliding = 2.0 * v0 / (7.0 * 0.3 * g); // s, when rolling starts at mu 0.3
+    const auto halfway = static_cast<int>(0.5 * tSliding / dt);
+    sim.advance(halfway);
+    const double t = halfway * dt;
+    const double vHalf = m.particles.velocity[0].x();
+    sim.advance(2 * halfway);
+    const double vEnd = m.particles.velocity[0].x();
+    if (mu == 0.0) {
+      EXPECT_NEAR(vHalf, v0, 1e-9 * v0) << "a frictionless platen exerts no tangential force";
+      EXPECT_NEAR(vEnd, v0, 1e-9 * v0);
+    } else {
+      EXPECT_NEAR(vHalf, v0 - mu * g * t, 0.02 * mu * g * t) << "sliding: deceleration mu g";
+      EXPECT_NEAR(vEnd, 5.0 / 7.0 * v0, 0.01 * v0) << "rolling at 5/7 of the initial speed";
+    }
+  }
 }
 
 // A run that goes unstable keeps its last good state (DESIGN.md, Stability) in full: the

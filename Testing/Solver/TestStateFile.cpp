@@ -106,6 +106,7 @@ Model everyFieldModel()
   m.particles.flags[3] |= FlagFixed | FlagFineZone;
   m.nextId += 17;
   m.random.next();
+  m.test.settings.platenFriction = 0.3; // a setting (not run with: the fixture's physics stays)
   return m;
 }
 
@@ -143,6 +144,8 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_EQ(s.servoAlpha, t.servoAlpha);
   EXPECT_EQ(s.sampleInterval, t.sampleInterval);
   EXPECT_EQ(s.settleTolerance, t.settleTolerance);
+  EXPECT_EQ(s.gripLength, t.gripLength);
+  EXPECT_EQ(s.platenFriction, t.platenFriction);
   EXPECT_EQ(a.test.initialLength, b.test.initialLength);
   EXPECT_EQ(a.test.initialVolume, b.test.initialVolume);
   EXPECT_EQ(a.test.initialSpread, b.test.initialSpread);
@@ -237,10 +240,10 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(Wall), 80u) << "Wall" << fix;
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
   EXPECT_EQ(sizeof(Bonds), 17 * sizeof(std::vector<double>)) << "Bonds" << fix;
-  EXPECT_EQ(sizeof(LoadTestSettings), 64u) << "LoadTestSettings" << fix;
+  EXPECT_EQ(sizeof(LoadTestSettings), 72u) << "LoadTestSettings" << fix;
   EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1232u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1240u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
@@ -350,6 +353,20 @@ TEST(StateFile, UnknownVersionIsRejectedNamingTheSupportedOnes)
   const std::string error = memoryError(image);
   EXPECT_NE(error.find("format version 7"), std::string::npos) << error;
   EXPECT_NE(error.find("supported versions are 1"), std::string::npos) << error;
+}
+
+TEST(StateFile, PlatenFrictionIsSavedAndOlderFilesReadAsFrictionless)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.platenFriction = 0.35;
+  startLoadTest(m, s);
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  EXPECT_EQ(readStateFromMemory(image.data(), image.size()).test.settings.platenFriction, 0.35);
+  // A file written before Platen Friction existed: the platens were frictionless.
+  const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "test/settings/platen_friction", H5P_DEFAULT); });
+  EXPECT_EQ(readStateFromMemory(older.data(), older.size()).test.settings.platenFriction, 0.0);
 }
 
 TEST(StateFile, BondsWithoutTheMomentContributionReadAsFullMoments)

@@ -170,6 +170,26 @@ TEST(VulkanRuns, MomentContributionBelowOneUnderUnconfinedCompressionGivesTheCpu
   EXPECT_NE(countBonds(full.bonds).broken, countBonds(cpu.bonds).broken) << "beta changes which bonds break";
 }
 
+TEST(VulkanRuns, PlatenFrictionUnderUnconfinedCompressionGivesTheCpuBits)
+{
+  // Issue 12's Platen Friction (LoadTest.md): the walls on the test axis take it, in
+  // geometry.glsl's contactModel as in CpuBackend::computeForces.
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  Model m = cementedSpecimen(600, 0.021, 2);
+  LoadTestSettings s = compression(25.0, 50);
+  s.platenFriction = 0.5;
+  Model lubricated = m;
+  startLoadTest(m, s);
+  startLoadTest(lubricated, compression(25.0, 50));
+  Model cpu, gpu;
+  EXPECT_EQ(cpuGpuDifference(m, { 700, 500 }, &cpu, &gpu), "") << "first difference";
+  {
+    Simulation reference(lubricated, SolverDevice::CPU);
+    reference.advance(1200);
+  }
+  EXPECT_NE(statetest::firstDifference(lubricated, cpu), "") << "the platens' friction changes the run";
+}
+
 TEST(VulkanRuns, SettlingWithRollingFrictionGivesTheCpuBits)
 {
   ROCKDEM_REQUIRE_VULKAN_DEVICE();

@@ -45,14 +45,15 @@ double massOf(Params p, uint i)
   return p.inverseMass.v[i] > 0.0LF ? p.mass.v[i] : infinity();
 }
 
-/// The contact model of the particle pairs (wall = false) or of the walls (frictionless
-/// during a press test).
-ContactModel contactModel(Params p, bool wall)
+/// The contact model of the particle pairs (wall = false) or of the walls (side walls
+/// frictionless during a press test; the platens, the walls on the test axis, with the
+/// test's Platen Friction, which the host sets to the walls' friction outside a test).
+ContactModel contactModel(Params p, bool wall, uint wallAxis)
 {
   ContactModel m;
   m.law = p.law;
   m.dampingCoefficient = p.dampingCoefficient;
-  m.friction = wall ? p.wallFriction : p.friction;
+  m.friction = wall ? (wallAxis == p.axis ? p.platenFriction : p.wallFriction) : p.friction;
   m.rollingFriction = wall ? p.wallRollingFriction : p.rollingFriction;
   m.youngsModulus = p.youngsModulus;
   m.poissonsRatio = p.poissonsRatio;

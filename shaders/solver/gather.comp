@@ -51,7 +51,7 @@ void wallContact(Params p, uint e, uint i, inout dvec3 force, inout dvec3 torque
   const dvec3 relativeVelocity = load3(p.velocity, i) - wallVelocity + cross3(w_i, arm * normal);
   const double approachSpeed =
     dot3(relativeVelocity + predict * p.inverseMass.v[i] * load3(p.force, i), normal);
-  const ContactModel wallModel = contactModel(p, true);
+  const ContactModel wallModel = contactModel(p, true, axis);
   const NormalResponse response =
     normalResponse(wallModel.law, loadConstants(p.wallConstants, e), overlap, approachSpeed);
   const double fn = response.force;

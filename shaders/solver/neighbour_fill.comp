@@ -30,7 +30,7 @@ void main()
   const uint pairBase = p.pairStart.v[i];
   const uint pairs = p.pairStart.v[i + 1u] - pairBase;
   const uint below = count - pairs;
-  const ContactModel cm = contactModel(p, false);
+  const ContactModel cm = contactModel(p, false, 0u);
   const bool planar = p.planar != 0u;
   for (uint t = 0u; t < pairs; ++t) {
     const uint j = p.partners.v[base + below + t];

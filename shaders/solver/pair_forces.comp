@@ -49,7 +49,7 @@ void main()
   const dvec3 predictedVelocity = relativeVelocity +
     predict * (p.inverseMass.v[i] * load3(p.force, i) - p.inverseMass.v[j] * load3(p.force, j));
   const double approachSpeed = dot3(predictedVelocity, normal);
-  const ContactModel cm = contactModel(p, false);
+  const ContactModel cm = contactModel(p, false, 0u);
   const NormalResponse response = normalResponse(cm.law, loadConstants(p.pairConstants, k), overlap, approachSpeed);
   const double fn = response.force;
   const dvec3 slip = inPlane(relativeVelocity, normal) * dt;

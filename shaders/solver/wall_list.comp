@@ -75,7 +75,7 @@ void main()
     if (i >= p.n) {
       return;
     }
-    const ContactModel cm = contactModel(p, false);
+    const ContactModel cm = contactModel(p, false, 0u);
     const bool rolling = p.rolling != 0u;
     uint e = p.wallStart.v[i];
     const uint oldFirst = p.oldWallStart.v[i];

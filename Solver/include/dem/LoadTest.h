@@ -42,6 +42,12 @@ struct LoadTestSettings {
   /// of each platen are held to it (the grips), dimensionless, > 0. 1 is the grip of state
   /// files written before Grip Length existed.
   double gripLength = 1.0;
+  /// Coulomb friction coefficient between the grains and the two platens (the walls on the
+  /// test axis), dimensionless, [0, 1]. 0 (the default, and the value of state files
+  /// written before Platen Friction existed): lubricated, frictionless platens. A
+  /// laboratory's unlubricated steel platens are about 0.2-0.5: they hold the specimen's
+  /// ends against its lateral expansion (end restraint). The side walls stay frictionless.
+  double platenFriction = 0.0;
 };
 
 /// Field-by-field equality (two stages with equal settings run the same test).

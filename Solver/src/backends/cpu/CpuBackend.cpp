@@ -493,12 +493,14 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   // 2. Bonds, each once (state updated and failure checked only on a real step).
   computeBondForces(incrementHistory);
 
-  // 3. Walls. During a press test the walls are frictionless (the usual choice for
-  // servo-controlled faces and platens: a face must be free to follow the specimen's
-  // lateral expansion without shear from it). Evaluated in the gather below, by the
-  // particle's own thread: wall entry e of particle i adds its force and torque.
+  // 3. Walls. During a press test the side walls are frictionless (a servo-controlled
+  // face must be free to follow the specimen's lateral expansion without shear from it)
+  // and the two platens (the walls on the test axis) have the test's Platen Friction.
+  // Evaluated in the gather below, by the particle's own thread: wall entry e of
+  // particle i adds its force and torque.
   ContactModel wallModel = cm;
-  if (model_.test.settings.mode != TestMode::Off) {
+  const bool pressTest = model_.test.settings.mode != TestMode::Off;
+  if (pressTest) {
     wallModel.friction = 0.0;
     wallModel.rollingFriction = 0.0;
   }
@@ -535,8 +537,10 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
       normalResponse(cm.law, im.wallConstants[e], overlap, approachSpeed);
     const double fn = response.force;
     const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-    const Vec3 ft = mindlinCoulombForce(response.tangentialStiffness, wallModel.friction, fn,
-                                        normal, slip, im.wallSpring[e]);
+    const double mu = pressTest && wall.axis == model_.test.settings.axis
+      ? model_.test.settings.platenFriction : wallModel.friction;
+    const Vec3 ft = mindlinCoulombForce(response.tangentialStiffness, mu, fn, normal, slip,
+                                        im.wallSpring[e]);
     Vec3 contactTorque = arm * normal.cross(ft);
     if (wallRolling) {
       const PairProperties pair = wallProperties(wallModel, p.radius[i], massOf(i), planar, slab);

@@ -508,8 +508,10 @@ void VulkanBackend::setStageParameters()
   q.platenVelocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
   q.confiningStress = s.confiningStress;
   q.servoAlpha = s.servoAlpha;
-  // Walls are frictionless during a press test (CpuBackend::computeForces).
+  // During a press test the side walls are frictionless and the platens (the walls on
+  // the test axis) have the test's Platen Friction (CpuBackend::computeForces).
   q.wallFriction = testMode ? 0.0 : contactModel_.friction;
+  q.platenFriction = testMode ? s.platenFriction : contactModel_.friction;
   q.wallRollingFriction = testMode ? 0.0 : contactModel_.rollingFriction;
   q.wallRollingOn = q.wallRollingFriction > 0.0 ? 1u : 0u;
   q.lengthFromWalls = 0;
