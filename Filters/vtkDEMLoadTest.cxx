@@ -479,6 +479,7 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   press.servoAlpha = this->ServoAlpha;
   press.sampleInterval = this->SampleInterval;
   press.gripLength = this->GripLength;
+  press.confinement = static_cast<dem::Confinement>(this->Confinement);
   return press;
 }
 
@@ -1178,6 +1179,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ServoAlpha: " << this->ServoAlpha << "\n";
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
   os << indent << "GripLength: " << this->GripLength << "\n";
+  os << indent << "Confinement: " << this->Confinement << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
   os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";
   os << indent << "CheckpointEvery: " << this->CheckpointEvery << "\n";

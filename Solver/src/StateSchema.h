@@ -198,6 +198,11 @@ void visitModel(IO& io, Model& m)
   } else {
     ts.gripLength = 1.0; // files written before Grip Length: the grip was one largest diameter
   }
+  if (io.has("test/settings/confinement")) {
+    io.enumeration("test/settings/confinement", ts.confinement, static_cast<int>(Confinement::Membrane));
+  } else {
+    ts.confinement = Confinement::RigidWalls; // files written before Confinement: rigid faces
+  }
   LoadTestState& t = m.test;
   io.enumeration("test/state/stage", t.stage, static_cast<int>(TestStage::Done));
   io.doubles3("test/state/initial_length", t.initialLength, "m");
