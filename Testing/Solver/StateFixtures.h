@@ -63,25 +63,32 @@ inline Model cementedMidCompression()
   return m;
 }
 
-/// Triaxial test past consolidation, in the middle of shear (between two samples).
-inline Model triaxialMidShear()
+/// A triaxial test on `m` at 100 kPa with the given confinement, past consolidation, in
+/// the middle of shear (between two samples); `name` names it in the error.
+inline Model shearing(Model m, Confinement confinement, const char* name)
 {
-  Model m = testing::specimen(500, 0.02, 0.001, 0.0015, 1);
   LoadTestSettings s;
   s.mode = TestMode::Triaxial;
+  s.confinement = confinement;
   s.confiningStress = 1e5;
   s.strainRate = 0.5;
   s.sampleInterval = 100;
   startLoadTest(m, s);
   Simulation sim(m);
-  for (int k = 0; k < 200 && m.test.stage != TestStage::Shear; ++k) {
+  for (int k = 0; k < 400 && m.test.stage != TestStage::Shear; ++k) {
     sim.advance(100);
   }
   sim.advance(750);
   if (m.test.stage != TestStage::Shear) {
-    throw std::runtime_error("triaxialMidShear: the test is not shearing");
+    throw std::runtime_error(std::string(name) + ": the test is not shearing");
   }
   return m;
+}
+
+/// Triaxial test past consolidation, in the middle of shear (between two samples).
+inline Model triaxialMidShear()
+{
+  return shearing(testing::specimen(500, 0.02, 0.001, 0.0015, 1), Confinement::RigidWalls, "triaxialMidShear");
 }
 
 /// A cylinder along Z (diameter 10 mm, length 17 mm, about 1000 grains of radius 0.5 to
@@ -106,23 +113,7 @@ inline Model membraneCylinder()
 /// middle of shear (between two samples).
 inline Model membraneTriaxialMidShear()
 {
-  Model m = membraneCylinder();
-  LoadTestSettings s;
-  s.mode = TestMode::Triaxial;
-  s.confinement = Confinement::Membrane;
-  s.confiningStress = 1e5;
-  s.strainRate = 0.5;
-  s.sampleInterval = 100;
-  startLoadTest(m, s);
-  Simulation sim(m);
-  for (int k = 0; k < 400 && m.test.stage != TestStage::Shear; ++k) {
-    sim.advance(100);
-  }
-  sim.advance(750);
-  if (m.test.stage != TestStage::Shear) {
-    throw std::runtime_error("membraneTriaxialMidShear: the test is not shearing");
-  }
-  return m;
+  return shearing(membraneCylinder(), Confinement::Membrane, "membraneTriaxialMidShear");
 }
 
 inline Model byName(const std::string& name)

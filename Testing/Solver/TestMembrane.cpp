@@ -153,10 +153,10 @@ TEST(Membrane, SameBitsOnAnyNumberOfThreads)
   two.solver.parallelThreshold = 0;
   {
     Simulation a(one);
-    a.advance(1500);
+    a.advance(600);
     Simulation b(two);
     EXPECT_NE(b.path().find("OpenMP"), std::string::npos) << b.path();
-    b.advance(1500);
+    b.advance(600);
   }
   two.solver = one.solver; // the settings differ on purpose; the state must not
   EXPECT_EQ(statetest::firstDifference(one, two), "");
