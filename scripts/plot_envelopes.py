@@ -9,7 +9,8 @@ LOG is the output of `rockdem_bench_rock --tests envelopes --specimen both --sig
 (scripts/membrane_envelopes.sh). Reads its "envelope" and "envelope-fit" lines and plots peak
 sigma1 against sigma3 for both specimens with their Mohr-Coulomb lines. The picture is a
 slice through the cylinder's axis (grains within one mean diameter of the XZ plane through
-the axis, coloured by displacement) with the broken bonds of that slab in red. Needs
+the axis, coloured by their radial displacement during the test) with the broken bonds of
+that slab (tension black, shear gold). Needs
 matplotlib (Debian: python3-matplotlib).
 """
 import argparse
@@ -73,36 +74,49 @@ def envelope_chart(points, fits, out):
 
 
 def specimen_picture(path, out):
-    grains, broken = [], []
+    grains, cracks = [], {"tension": [], "shear": []}
     with open(path) as f:
         for row in csv.DictReader(f):
             xyz = (float(row["x"]), float(row["y"]), float(row["z"]))
             if row["kind"] == "particle":
-                grains.append(xyz + (float(row["radius"]), float(row["displacement"])))
-            else:
-                broken.append(xyz)
+                grains.append(xyz + (float(row["radius"]), float(row["dx"]), float(row["dy"]), float(row["dz"])))
+            elif row["kind"] in cracks:
+                cracks[row["kind"]].append(xyz)
     if not grains:
         sys.exit("no particles in " + path)
+    cx = sum(g[0] for g in grains) / len(grains)
     cy = sum(g[1] for g in grains) / len(grains)
     diameter = 2.0 * sum(g[3] for g in grains) / len(grains)
+    # The slab through the axis (the XZ plane through the centroid), one mean diameter thick
+    # on either side; colour: the radial displacement during the test (outward positive).
     slab = [g for g in grains if abs(g[1] - cy) <= diameter]
-    patches = [Circle((g[0] * 1e3, g[2] * 1e3), g[3] * 1e3) for g in slab]
+
+    def radial(g):
+        rx, ry = g[0] - cx, g[1] - cy
+        r = (rx * rx + ry * ry) ** 0.5 or 1.0
+        return (g[4] * rx + g[5] * ry) / r
+
     fig, ax = plt.subplots(figsize=(4.8, 7.2))
-    coll = PatchCollection(patches, cmap="viridis", edgecolor="none")
-    coll.set_array([g[4] * 1e3 for g in slab])
+    coll = PatchCollection([Circle((g[0] * 1e3, g[2] * 1e3), g[3] * 1e3) for g in slab], cmap="coolwarm",
+                           edgecolor="none")
+    values = [radial(g) * 1e3 for g in slab]
+    top = max(abs(v) for v in values) or 1.0
+    coll.set_array(values)
+    coll.set_clim(-top, top)
     ax.add_collection(coll)
-    cracks = [b for b in broken if abs(b[1] - cy) <= diameter]
-    ax.plot([b[0] * 1e3 for b in cracks], [b[2] * 1e3 for b in cracks], ".", color="red", markersize=3,
-            label="broken bonds (%d in the slab)" % len(cracks))
-    fig.colorbar(coll, ax=ax, label="displacement (mm)")
+    for kind, colour in (("tension", "black"), ("shear", "gold")):
+        pts = [c for c in cracks[kind] if abs(c[1] - cy) <= diameter]
+        ax.plot([c[0] * 1e3 for c in pts], [c[2] * 1e3 for c in pts], ".", color=colour, markersize=2.5,
+                label="%s cracks (%d in the slab)" % (kind, len(pts)))
+    fig.colorbar(coll, ax=ax, label="radial displacement during the test (mm, outward +)")
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("z (mm, axis)")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper right", fontsize=7)
     ax.set_title("Membrane cylinder after failure\n(slab through the axis)")
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    fig.savefig(out, dpi=110)
     print("wrote", out)
 
 

@@ -333,6 +333,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
   startLoadTest(m, s); // again, with the rate that gives the strain per step
+  const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
   Simulation run(m);
   std::vector<double> strain, stress, lateral;
   bool fallen = false;
@@ -403,13 +404,17 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   r.seconds = secondsSince(start);
   if (failed) {
     *failed = m;
+    // The displacements of this test only (slots do not change during a test).
+    for (std::size_t i = 0; i < failed->particles.size() && i < startPosition.size(); ++i) {
+      failed->particles.displacement[i] = failed->particles.position[i] - startPosition[i];
+    }
   }
   return r;
 }
 
 /// Writes the failed membrane specimen for scripts/plot_envelopes.py: one line per
-/// particle (x, y, z, radius, displacement magnitude, m) and per broken bond (its failure
-/// position), with the membrane's axis and radius in the header.
+/// particle (x, y, z, radius, and its displacement during the test dx, dy, dz; m) and per
+/// broken bond (kind tension or shear, its failure position).
 void dumpSpecimen(const Model& m, const std::string& path)
 {
   FILE* f = std::fopen(path.c_str(), "w");
@@ -417,16 +422,18 @@ void dumpSpecimen(const Model& m, const std::string& path)
     std::fprintf(stderr, "cannot write %s\n", path.c_str());
     return;
   }
-  std::fprintf(f, "kind,x,y,z,radius,displacement\n");
+  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz\n");
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     const Vec3& x = m.particles.position[i];
-    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g\n", x.x(), x.y(), x.z(), m.particles.radius[i],
-                 m.particles.displacement[i].norm());
+    const Vec3& u = m.particles.displacement[i];
+    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", x.x(), x.y(), x.z(), m.particles.radius[i],
+                 u.x(), u.y(), u.z());
   }
   for (std::size_t k = 0; k < m.bonds.size(); ++k) {
     if (m.bonds.broken(k)) {
       const Vec3& x = m.bonds.failurePosition[k];
-      std::fprintf(f, "broken,%.9g,%.9g,%.9g,0,0\n", x.x(), x.y(), x.z());
+      const bool tension = m.bonds.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
+      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0\n", tension ? "tension" : "shear", x.x(), x.y(), x.z());
     }
   }
   std::fclose(f);
