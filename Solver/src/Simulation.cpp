@@ -221,7 +221,7 @@ Simulation::Simulation(Model& model, SolverDevice device)
   if (device == SolverDevice::GPU && model.test.settings.confinement == Confinement::Membrane &&
       model.test.stage != TestStage::Idle) {
     throw InputError("Confinement = Membrane runs on the CPU backend only (the GPU solver has no membrane "
-                     "forces); set Solver to CPU, or use Confinement = Rigid Walls on the GPU.");
+                     "forces); turn GPU Solver off, or use Confinement = Rigid Walls on the GPU.");
   }
   if (device == SolverDevice::GPU) {
     try {

@@ -131,7 +131,7 @@ TEST(Membrane, BadInputIsRefusedByName)
     s.confinement = Confinement::Membrane;
     startLoadTest(cylinder, s);
     expectInputError([&] { Simulation sim(cylinder, SolverDevice::GPU); },
-                     { "Confinement = Membrane runs on the CPU backend only", "set Solver to CPU" });
+                     { "Confinement = Membrane runs on the CPU backend only", "turn GPU Solver off" });
   }
 }
 
