@@ -79,9 +79,14 @@ def specimen_picture(path, out):
         for row in csv.DictReader(f):
             xyz = (float(row["x"]), float(row["y"]), float(row["z"]))
             if row["kind"] == "particle":
-                grains.append(xyz + (float(row["radius"]), float(row["dx"]), float(row["dy"]), float(row["dz"])))
+                if "dx" in row:
+                    grains.append(xyz + (float(row["radius"]), float(row["dx"]), float(row["dy"]), float(row["dz"])))
+                else:  # an older dump: the displacement magnitude since the pack was built
+                    grains.append(xyz + (float(row["radius"]), float(row["displacement"]), None, None))
             elif row["kind"] in cracks:
                 cracks[row["kind"]].append(xyz)
+            elif row["kind"] == "broken":  # an older dump: no crack kinds
+                cracks.setdefault("broken", []).append(xyz)
     if not grains:
         sys.exit("no particles in " + path)
     cx = sum(g[0] for g in grains) / len(grains)
@@ -91,24 +96,32 @@ def specimen_picture(path, out):
     # on either side; colour: the radial displacement during the test (outward positive).
     slab = [g for g in grains if abs(g[1] - cy) <= diameter]
 
+    vectors = slab[0][5] is not None
+
     def radial(g):
+        if not vectors:
+            return g[4]
         rx, ry = g[0] - cx, g[1] - cy
         r = (rx * rx + ry * ry) ** 0.5 or 1.0
         return (g[4] * rx + g[5] * ry) / r
 
     fig, ax = plt.subplots(figsize=(4.8, 7.2))
-    coll = PatchCollection([Circle((g[0] * 1e3, g[2] * 1e3), g[3] * 1e3) for g in slab], cmap="coolwarm",
-                           edgecolor="none")
+    coll = PatchCollection([Circle((g[0] * 1e3, g[2] * 1e3), g[3] * 1e3) for g in slab],
+                           cmap="coolwarm" if vectors else "viridis", edgecolor="none")
     values = [radial(g) * 1e3 for g in slab]
-    top = max(abs(v) for v in values) or 1.0
     coll.set_array(values)
-    coll.set_clim(-top, top)
+    if vectors:
+        top = max(abs(v) for v in values) or 1.0
+        coll.set_clim(-top, top)
     ax.add_collection(coll)
-    for kind, colour in (("tension", "black"), ("shear", "gold")):
-        pts = [c for c in cracks[kind] if abs(c[1] - cy) <= diameter]
+    for kind, colour in (("tension", "black"), ("shear", "gold"), ("broken", "red")):
+        pts = [c for c in cracks.get(kind, []) if abs(c[1] - cy) <= diameter]
+        if not pts:
+            continue
         ax.plot([c[0] * 1e3 for c in pts], [c[2] * 1e3 for c in pts], ".", color=colour, markersize=2.5,
                 label="%s cracks (%d in the slab)" % (kind, len(pts)))
-    fig.colorbar(coll, ax=ax, label="radial displacement during the test (mm, outward +)")
+    fig.colorbar(coll, ax=ax, label="radial displacement during the test (mm, outward +)" if vectors
+                 else "displacement since the pack was built (mm)")
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_xlabel("x (mm)")
