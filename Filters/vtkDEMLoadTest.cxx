@@ -480,6 +480,7 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   press.sampleInterval = this->SampleInterval;
   press.gripLength = this->GripLength;
   press.platenFriction = this->PlatenFriction;
+  press.confinement = static_cast<dem::Confinement>(this->Confinement);
   return press;
 }
 
@@ -1180,6 +1181,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
   os << indent << "GripLength: " << this->GripLength << "\n";
   os << indent << "PlatenFriction: " << this->PlatenFriction << "\n";
+  os << indent << "Confinement: " << this->Confinement << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
   os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";
   os << indent << "CheckpointEvery: " << this->CheckpointEvery << "\n";

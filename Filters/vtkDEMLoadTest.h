@@ -126,6 +126,10 @@ public:
   ///@{
   /// Tension: the particles within this many largest particle diameters of each platen
   /// are held to it (the grips), dimensionless, > 0 (default 1).
+  /// Triaxial and Isotropic: 0 Rigid Walls (four servo-controlled faces), 1 Membrane (a
+  /// flexible membrane around a cylindrical specimen along Axis; dem/Membrane.h).
+  vtkSetMacro(Confinement, int);
+  vtkGetMacro(Confinement, int);
   vtkSetMacro(GripLength, double);
   vtkGetMacro(GripLength, double);
   ///@}
@@ -344,6 +348,7 @@ protected:
   int SampleInterval = 100;
   double GripLength = 1.0;
   double PlatenFriction = 0.0;
+  int Confinement = 0;
   char* HistoryFile = nullptr;
   char* CheckpointFile = nullptr;
   int CheckpointEvery = 0;

@@ -163,6 +163,7 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
   AddField(fd, "TestSettings", { static_cast<double>(s.mode), static_cast<double>(s.axis),
     s.confiningStress, s.strainRate, s.maxStrain, s.servoAlpha, static_cast<double>(s.sampleInterval),
     s.settleTolerance, s.gripLength, s.platenFriction });
+  AddField(fd, "TestConfinement", { static_cast<double>(s.confinement) });
   AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
     t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
     static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample), t.initialSpread[0],
@@ -198,6 +199,14 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
   s.settleTolerance = value("TestSettings", 7, 10);
   s.gripLength = value("TestSettings", 8, 10);
   s.platenFriction = value("TestSettings", 9, 10);
+  // Confinement (0 Rigid Walls, 1 Membrane); a model written before it existed has rigid walls.
+  const double confinement = fd->GetAbstractArray("TestConfinement") ? value("TestConfinement", 0, 1) : 0.0;
+  if (!(confinement == 0.0 || confinement == 1.0))
+  {
+    throw dem::InputError("RockDEM model array 'TestConfinement' has an unknown confinement " +
+      dem::formatValue(confinement) + " (valid: 0 Rigid Walls, 1 Membrane).");
+  }
+  s.confinement = static_cast<dem::Confinement>(static_cast<int>(confinement));
   const double stage = value("TestState", 0, 12);
   if (!(stage >= 0 && stage <= 3))
   {

@@ -396,7 +396,8 @@ def brazilian_test(cemented_disc, axis="Y", **props):
 def triaxial_series(cemented_source, confining_stresses, delete=True, progress=None, **props):
     """Triaxial tests on one cemented model at each confining stress, and the envelope.
 
-    props go to run_test (Mode Triaxial). Returns (results, (cohesion_Pa,
+    props go to run_test (Mode Triaxial), e.g. Confinement="Membrane" for a cylinder carved
+    by DEM Specimen (Documentation/Specimens.md, "The flexible membrane"). Returns (results, (cohesion_Pa,
     friction_angle_deg)) with results a list of dicts: confining (Pa), peak_axial
     (sigma1 at failure, Pa), peak_deviator (Pa), broken_bonds, history. The envelope is
     fit_mohr_coulomb over (confining, peak_axial); it is (nan, nan) when it cannot be

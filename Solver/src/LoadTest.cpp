@@ -2,6 +2,7 @@
 
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
+#include "dem/Membrane.h"
 #include "dem/Model.h"
 #include "dem/Simulation.h"
 
@@ -31,6 +32,15 @@ const char* stageName(TestStage stage)
     case TestStage::Consolidate: return "consolidate";
     case TestStage::Shear: return "shear";
     case TestStage::Done: return "done";
+  }
+  return "?";
+}
+
+const char* confinementName(Confinement confinement)
+{
+  switch (confinement) {
+    case Confinement::RigidWalls: return "Rigid Walls";
+    case Confinement::Membrane: return "Membrane";
   }
   return "?";
 }
@@ -67,6 +77,15 @@ void validate(const LoadTestSettings& s)
     requirePositive("Grip Length", s.gripLength, "largest particle diameters");
   }
   requireInRange("Platen Friction", s.platenFriction, 0.0, 1.0);
+  if (s.confinement == Confinement::Membrane && s.mode != TestMode::Triaxial && s.mode != TestMode::Isotropic) {
+    throw InputError(std::string("Confinement = Membrane is out of range for Mode = ") + modeName(s.mode) +
+      ": the membrane confines a Triaxial or Isotropic test (valid values here: Rigid Walls; a " +
+      modeName(s.mode) + " test has no confining stress).");
+  }
+  if (s.confinement != Confinement::RigidWalls && s.confinement != Confinement::Membrane) {
+    throw InputError("Confinement = " + std::to_string(static_cast<int>(s.confinement)) +
+      " is out of range: valid values are Rigid Walls (0), Membrane (1).");
+  }
   if (s.sampleInterval < 1) {
     throw InputError("Sample Interval = " + std::to_string(s.sampleInterval) +
                      " is out of range: it must be 1 or more steps.");
@@ -75,7 +94,7 @@ void validate(const LoadTestSettings& s)
 
 bool operator==(const LoadTestSettings& a, const LoadTestSettings& b)
 {
-  return a.mode == b.mode && a.axis == b.axis && a.confiningStress == b.confiningStress &&
+  return a.mode == b.mode && a.confinement == b.confinement && a.axis == b.axis && a.confiningStress == b.confiningStress &&
     a.strainRate == b.strainRate && a.maxStrain == b.maxStrain && a.servoAlpha == b.servoAlpha &&
     a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance &&
     a.gripLength == b.gripLength && a.platenFriction == b.platenFriction;
@@ -169,6 +188,7 @@ RemovedParticles removeEscapedGrains(Model& model)
 RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
 {
   validate(settings);
+  validateMembraneSpecimen(model, settings);
   if (settings.mode == TestMode::Tension && !model.particles.empty()) {
     const BondCounts bonds = countBonds(model.bonds);
     if (bonds.installed == bonds.broken) {
@@ -243,6 +263,12 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
       case TestMode::Tension:
         w.active = false; // the particles next to each platen are attached to it instead
         break;
+      case TestMode::Triaxial:
+      case TestMode::Isotropic:
+        if (settings.confinement == Confinement::Membrane) {
+          w.active = w.active && axial; // the membrane replaces the four side faces
+        }
+        break;
       default:
         break;
     }
@@ -308,6 +334,13 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
     : TestStage::Shear;
   if (settings.mode == TestMode::Compression || settings.mode == TestMode::Brazilian) {
     model.walls[2 * a + 1].velocity = -settings.strainRate * t.initialLength[a];
+  }
+  if (membraneActive(model)) {
+    // The cylinder's starting diameter: twice the membrane's radius.
+    const double diameter = 2.0 * membraneSurface(model).radius;
+    t.initialLength[(a + 1) % 3] = diameter;
+    t.initialLength[(a + 2) % 3] = diameter;
+    t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
   }
   return removed;
 }

@@ -8,6 +8,7 @@
 #include "dem/Errors.h"
 #include "dem/ParticleStress.h"
 #include "dem/Overlaps.h"
+#include "dem/Membrane.h"
 #include "dem/WallControl.h"
 
 #include <algorithm>
@@ -217,6 +218,11 @@ Simulation::Simulation(Model& model, SolverDevice device)
   validatePlatenSpeed(model, timestep_);
   model.clock.timestep = timestep_;
 
+  if (device == SolverDevice::GPU && model.test.settings.confinement == Confinement::Membrane &&
+      model.test.stage != TestStage::Idle) {
+    throw InputError("Confinement = Membrane runs on the CPU backend only (the GPU solver has no membrane "
+                     "forces); turn GPU Solver off, or use Confinement = Rigid Walls on the GPU.");
+  }
   if (device == SolverDevice::GPU) {
     try {
       backend_.reset(new VulkanBackend(model, contactModel_, timestep_));
@@ -264,20 +270,23 @@ TestMeasurements Simulation::measurements() const
   const bool planar = d.section2D;
   TestMeasurements m;
   const std::array<double, 3> length = specimenLengths(model_);
-  const double volume = length[0] * length[1] * length[2];
+  // A membrane cylinder: its cross-section is pi R^2, not the product of two lengths.
+  const MembraneSurface membrane = membraneSurface(model_);
+  const bool cylinder = membrane.crossSection > 0.0;
+  const double volume = cylinder ? membrane.crossSection * length[s.axis] : length[0] * length[1] * length[2];
   for (int k = 0; k < 3; ++k) {
     const double l0 = t.initialLength[k] > 0.0 ? t.initialLength[k] : d.size[k];
     m.strain[k] = (planar && k == 2) ? 0.0 : (l0 - length[k]) / l0;
   }
   const double v0 = t.initialVolume > 0.0 ? t.initialVolume
                                            : d.size.x() * d.size.y() * d.size.z();
-  m.volumetricStrain = 1.0 - volume / v0;
+  m.volumetricStrain = 1.0 - length[0] * length[1] * length[2] / v0; // a cylinder: (D/D0)^2 L/L0 as well
   // Face stresses from the wall reactions over the current face areas.
   for (int w = 0; w < 6; ++w) {
     const Wall& wall = model_.walls[w];
     const int b = (wall.axis + 1) % 3;
     const int c = (wall.axis + 2) % 3;
-    const double area = length[b] * length[c];
+    const double area = cylinder && wall.axis == s.axis ? membrane.crossSection : length[b] * length[c];
     m.faceStress[w] = wall.active && area > 0.0 ? -wall.force.dot(wall.normal()) / area : 0.0;
   }
   // Love-Weber: sigma = -(1/V) sum over particles and their contacts of (x_c - x_p) (x) f_c.
@@ -306,6 +315,17 @@ TestMeasurements Simulation::measurements() const
       const double distance = (p.position[i][wall.axis] - wall.position) * side;
       const Vec3 arm = -wall.normal() * distance; // centre to contact point
       sum += arm * im.wallForce[e].transpose();
+    }
+  }
+  if (im.externalForce.size() == p.size()) {
+    // The membrane pushes each surface grain at its outer surface: the arm runs from the
+    // centre outwards by the radius, against the (inward) force.
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double f = im.externalForce[i].norm();
+      if (f > 0.0) {
+        const Vec3 arm = -(p.radius[i] / f) * im.externalForce[i];
+        sum += arm * im.externalForce[i].transpose();
+      }
     }
   }
   const Eigen::Matrix3d sigma = -(sum + sum.transpose()) / (2.0 * volume);
@@ -341,6 +361,10 @@ TestMeasurements Simulation::measurements() const
     }
   }
   m.lateralStress = sides > 0 ? lateral / sides : 0.0;
+  if (cylinder) {
+    // The membrane: its forces summed over the lateral surface, over that surface's area.
+    m.lateralStress = membrane.force / membrane.lateralArea;
+  }
   m.deviatorStress = m.axialStress - m.lateralStress;
 
   // Inertial number I = strain rate x mean diameter x sqrt(density / mean stress).

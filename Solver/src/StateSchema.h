@@ -203,6 +203,11 @@ void visitModel(IO& io, Model& m)
   } else {
     ts.platenFriction = 0.0; // files written before Platen Friction: frictionless platens
   }
+  if (io.has("test/settings/confinement")) {
+    io.enumeration("test/settings/confinement", ts.confinement, static_cast<int>(Confinement::Membrane));
+  } else {
+    ts.confinement = Confinement::RigidWalls; // files written before Confinement: rigid faces
+  }
   LoadTestState& t = m.test;
   io.enumeration("test/state/stage", t.stage, static_cast<int>(TestStage::Done));
   io.doubles3("test/state/initial_length", t.initialLength, "m");

@@ -2,6 +2,7 @@
 #include "dem/WallControl.h"
 
 #include "dem/LoadTest.h"
+#include "dem/Membrane.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,12 +18,16 @@ std::array<double, 3> specimenLengths(const Model& model)
   const Particles& p = model.particles;
   const LoadTestState& t = model.test;
   std::array<double, 3> length{ { 0.0, 0.0, 0.0 } };
+  // A membrane cylinder: its diameter across the axis (twice the membrane's radius).
+  const double membraneDiameter = membraneActive(model) ? 2.0 * membraneSurface(model).radius : 0.0;
   for (int k = 0; k < 3; ++k) {
     const Wall& low = model.walls[2 * k];
     const Wall& high = model.walls[2 * k + 1];
     const bool platenAxis = t.settings.mode != TestMode::Off && k == t.settings.axis;
     if (low.active || high.active || platenAxis) {
       length[k] = high.position - low.position;
+    } else if (membraneDiameter > 0.0) {
+      length[k] = membraneDiameter;
     } else if (model.domain.section2D && k == 2) {
       length[k] = model.domain.slabThickness();
     } else if (t.initialSpread[k] > 0.0) {
@@ -68,16 +73,18 @@ void controlWalls(Model& model, double dt, double smallestRadius)
   // to close a gap of a radius in a few hundred steps, slow enough that the viscous part
   // of the contact forces does not dominate what the servo measures.
   const double maxSpeed = 0.002 * rmin / dt;
+  // In a membrane cylinder the platens' area is the membrane's cross-section, pi R^2.
+  const double membraneSection = membraneActive(model) ? membraneSurface(model).crossSection : 0.0;
   for (Wall& w : model.walls) {
     const bool servo = w.active && (servoAll || (servoSides && w.axis != a));
     if (servo) {
-      if (!lengthKnown) {
+      if (!lengthKnown && !(membraneSection > 0.0 && w.axis == a)) {
         length = specimenLengths(model);
         lengthKnown = true;
       }
       const int b = (w.axis + 1) % 3;
       const int c = (w.axis + 2) % 3;
-      const double area = length[b] * length[c];
+      const double area = membraneSection > 0.0 && w.axis == a ? membraneSection : length[b] * length[c];
       w.velocity = servoWallVelocity(w.elasticForce, w.contactStiffness, area, s.confiningStress,
                                      s.servoAlpha, dt, maxSpeed, w.side);
     } else if (platenMoving && w.axis == a && w.side == 1) {

@@ -8,12 +8,19 @@
 //   rockdem_bench_rock [--particles 10000] [--range 1.4] [--tests ucs,tension,triaxial]
 //                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6]
 //                      [--moment-contribution 1] ...
+//   rockdem_bench_rock --tests envelopes --specimen both --sigma3 1e6,2e6,4e6 [--dump DIR]
+//     triaxial tests at absolute confining stresses on a box (rigid walls) and on a cylinder
+//     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
+//     peaks and Mohr-Coulomb fit ("envelope" lines, read by scripts/plot_envelopes.py);
+//     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Cement.h"
 #include "dem/Fractures.h"
 #include "dem/LoadTest.h"
+#include "dem/Membrane.h"
 #include "dem/Pack.h"
+#include "dem/Specimen.h"
 #include "dem/Random.h"
 #include "dem/Simulation.h"
 
@@ -59,6 +66,9 @@ struct Options {
   double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
   std::string tests = "ucs,tension";
   std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
+  std::vector<double> sigma3{ 1e6, 2e6, 4e6 };     // Pa, --tests envelopes
+  std::string specimen = "box";                    // box, cylinder, both (--tests envelopes)
+  std::string dump;                                // directory for membrane_failed.csv
   std::uint64_t seed = 1;
   int threads = 0;
   bool profile = false;         // print the broken-bond profile along the axis
@@ -87,6 +97,12 @@ Options parse(int argc, char** argv)
       o.tests = argv[++i];
     } else if (a == "--confining" && i + 1 < argc) {
       o.confining = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--sigma3" && i + 1 < argc) {
+      o.sigma3 = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--specimen" && i + 1 < argc) {
+      o.specimen = argv[++i];
+    } else if (a == "--dump" && i + 1 < argc) {
+      o.dump = argv[++i];
     } else if (a == "--seed" && i + 1 < argc) {
       o.seed = static_cast<std::uint64_t>(std::atol(argv[++i]));
     } else if (a == "--threads" && i + 1 < argc) {
@@ -115,7 +131,7 @@ double secondsSince(std::chrono::steady_clock::time_point t)
 
 /// The specimen: a W x W x aspect W box holding about `particles` grains at the target
 /// porosity, placed, compacted and cemented.
-Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& compacted)
+Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& compacted, bool cylinder = false)
 {
   Model m;
   const double a = o.rmin;
@@ -150,6 +166,16 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   CompactParameters c;
   c.targetPorosity = o.porosity;
   compacted = compactElements(m, c);
+  if (cylinder) {
+    // The cylinder inscribed in the box (diameter = width, length = height), carved before
+    // the cement as in the laboratory workflow (Documentation/Specimens.md).
+    SpecimenSettings shape;
+    shape.shape = SpecimenShape::Cylinder;
+    shape.axis = 2;
+    shape.diameter = full.x();
+    shape.length = full.z();
+    carveSpecimen(m, shape);
+  }
   CementParameters cp;
   cp.bondRange = o.range;
   cp.gapTolerance = o.gap;
@@ -353,13 +379,15 @@ std::string randomDamageControl(Model m)
 
 /// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
 /// tension), the shear stage's max strain, or the test is done.
-TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse)
+TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
+                   Confinement confinement = Confinement::RigidWalls, Model* failed = nullptr)
 {
   const Model start0 = m;
   TestResult r;
   const auto start = std::chrono::steady_clock::now();
   LoadTestSettings s;
   s.mode = mode;
+  s.confinement = confinement;
   s.axis = 2;
   s.confiningStress = confining > 0.0 ? confining : 1e6;
   s.maxStrain = o.maxStrain;
@@ -369,6 +397,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
   startLoadTest(m, s); // again, with the rate that gives the strain per step
+  const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
   Simulation run(m);
   std::vector<double> strain, stress, lateral;
   bool fallen = false;
@@ -439,8 +468,46 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     r.dfn += "\n  " + randomDamageControl(m);
   }
   r.seconds = secondsSince(start);
+  if (failed) {
+    *failed = m;
+    // The displacements of this test only (slots do not change during a test).
+    for (std::size_t i = 0; i < failed->particles.size() && i < startPosition.size(); ++i) {
+      failed->particles.displacement[i] = failed->particles.position[i] - startPosition[i];
+    }
+  }
   return r;
 }
+
+/// Writes the failed membrane specimen for scripts/plot_envelopes.py: one line per
+/// particle (x, y, z, radius, and its displacement during the test dx, dy, dz; m) and per
+/// broken bond (kind tension or shear, its failure position).
+void dumpSpecimen(const Model& m, const std::string& path)
+{
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) {
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    return;
+  }
+  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz\n");
+  for (std::size_t i = 0; i < m.particles.size(); ++i) {
+    const Vec3& x = m.particles.position[i];
+    const Vec3& u = m.particles.displacement[i];
+    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", x.x(), x.y(), x.z(), m.particles.radius[i],
+                 u.x(), u.y(), u.z());
+  }
+  for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+    if (m.bonds.broken(k)) {
+      const Vec3& x = m.bonds.failurePosition[k];
+      const bool tension = m.bonds.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
+      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0\n", tension ? "tension" : "shear", x.x(), x.y(), x.z());
+    }
+  }
+  std::fclose(f);
+}
+
+/// Least-squares Mohr-Coulomb fit sigma1 = a + b sigma3: prints it with the friction angle
+/// and cohesion under `label`.
+void printMohrCoulomb(const char* label, const std::vector<double>& s3, const std::vector<double>& s1);
 
 bool wants(const Options& o, const char* test)
 {
@@ -493,6 +560,48 @@ int main(int argc, char** argv)
     }
     std::fflush(stdout);
   }
+  if (wants(o, "envelopes")) {
+    // The same rock in a rigid box and in a membrane cylinder: triaxial tests at the same
+    // absolute confining stresses.
+    for (const char* kind : { "box", "cylinder" }) {
+      if (o.specimen != "both" && o.specimen != kind) {
+        continue;
+      }
+      const bool cylinder = std::string(kind) == "cylinder";
+      CementReport c2;
+      CompactReport p2;
+      const auto built = std::chrono::steady_clock::now();
+      const Model spec = cylinder ? buildSpecimen(o, c2, p2, true) : m;
+      if (cylinder) {
+        std::printf("cylinder: %zu particles carved from the same pack, diameter %.4g m, length %.4g m; %s (%.1f s)\n",
+                    spec.particles.size(), width, m.domain.size.z(), c2.summary().c_str(), secondsSince(built));
+      }
+      std::vector<double> s3, s1;
+      for (std::size_t k = 0; k < o.sigma3.size(); ++k) {
+        Model failed;
+        const bool last = k + 1 == o.sigma3.size();
+        const TestResult t = runTest(spec, TestMode::Triaxial, o.sigma3[k], o, false,
+                                     cylinder ? Confinement::Membrane : Confinement::RigidWalls,
+                                     cylinder && last ? &failed : nullptr);
+        s3.push_back(o.sigma3[k]);
+        s1.push_back(t.peak);
+        std::printf("envelope %s sigma3 %.6g sigma1 %.6g strain %.5g broken %zu %s (%lld steps, %.1f s)\n", kind,
+                    o.sigma3[k], t.peak, t.peakStrain, t.broken, t.peaked ? "peak" : "no-peak",
+                    static_cast<long long>(t.steps), t.seconds);
+        if (cylinder && last) {
+          const MembraneSurface ms = membraneSurface(failed);
+          std::printf("membrane after the test at %.4g Pa: radius %.5g m, spread %.4g m (%.2f %%), min %.5g, max %.5g m\n",
+                      o.sigma3[k], ms.radius, ms.radiusSpread, 100.0 * ms.radiusSpread / ms.radius, ms.minRadius,
+                      ms.maxRadius);
+          if (!o.dump.empty()) {
+            dumpSpecimen(failed, o.dump + "/membrane_failed.csv");
+          }
+        }
+        std::fflush(stdout);
+      }
+      printMohrCoulomb(kind, s3, s1);
+    }
+  }
   if (wants(o, "triaxial") && ucs > 0.0) {
     std::vector<double> s3{ 0.0 }, s1{ ucs };
     for (double f : o.confining) {
@@ -530,3 +639,19 @@ int main(int argc, char** argv)
   std::printf("total %.1f s\n", secondsSince(start));
   return 0;
 }
+
+namespace {
+void printMohrCoulomb(const char* label, const std::vector<double>& s3, const std::vector<double>& s1)
+{
+  const double b = slope(s3, s1);
+  double m1 = 0.0, m3 = 0.0;
+  for (std::size_t i = 0; i < s1.size(); ++i) {
+    m1 += s1[i] / s1.size();
+    m3 += s3[i] / s3.size();
+  }
+  const double a = m1 - b * m3;
+  const double phi = b > 1.0 ? std::asin((b - 1.0) / (b + 1.0)) * 180.0 / kPi : 0.0;
+  std::printf("envelope-fit %s: sigma1 = %.6g + %.6g sigma3; friction angle %.2f deg, cohesion %.6g Pa\n", label, a,
+              b, phi, a * (1.0 - std::sin(phi * kPi / 180)) / (2.0 * std::cos(phi * kPi / 180)));
+}
+} // namespace

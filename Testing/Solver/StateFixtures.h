@@ -10,6 +10,7 @@
 #include "dem/Model.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
+#include "dem/Specimen.h"
 #include "Specimens.h"
 
 #include <cstring>
@@ -62,25 +63,57 @@ inline Model cementedMidCompression()
   return m;
 }
 
-/// Triaxial test past consolidation, in the middle of shear (between two samples).
-inline Model triaxialMidShear()
+/// A triaxial test on `m` at 100 kPa with the given confinement, past consolidation, in
+/// the middle of shear (between two samples); `name` names it in the error.
+inline Model shearing(Model m, Confinement confinement, const char* name)
 {
-  Model m = testing::specimen(500, 0.02, 0.001, 0.0015, 1);
   LoadTestSettings s;
   s.mode = TestMode::Triaxial;
+  s.confinement = confinement;
   s.confiningStress = 1e5;
   s.strainRate = 0.5;
   s.sampleInterval = 100;
   startLoadTest(m, s);
   Simulation sim(m);
-  for (int k = 0; k < 200 && m.test.stage != TestStage::Shear; ++k) {
+  for (int k = 0; k < 400 && m.test.stage != TestStage::Shear; ++k) {
     sim.advance(100);
   }
   sim.advance(750);
   if (m.test.stage != TestStage::Shear) {
-    throw std::runtime_error("triaxialMidShear: the test is not shearing");
+    throw std::runtime_error(std::string(name) + ": the test is not shearing");
   }
   return m;
+}
+
+/// Triaxial test past consolidation, in the middle of shear (between two samples).
+inline Model triaxialMidShear()
+{
+  return shearing(testing::specimen(500, 0.02, 0.001, 0.0015, 1), Confinement::RigidWalls, "triaxialMidShear");
+}
+
+/// A cylinder along Z (diameter 10 mm, length 17 mm, about 1000 grains of radius 0.5 to
+/// 0.6 mm grown by Compact Elements to porosity 0.37 in a 10 x 10 x 17.6 mm box, carved by
+/// DEM Specimen), without gravity, grain modulus 1e8 Pa.
+inline Model membraneCylinder()
+{
+  Model m = testing::placedPack(Vec3(0.0104, 0.0104, 0.0176), false, 1400, 0.0005, 0.0006, 21);
+  CompactParameters c;
+  c.targetPorosity = 0.37;
+  compactElements(m, c);
+  SpecimenSettings cylinder;
+  cylinder.shape = SpecimenShape::Cylinder;
+  cylinder.axis = 2;
+  cylinder.diameter = 0.01;
+  cylinder.length = 0.017;
+  carveSpecimen(m, cylinder);
+  return m;
+}
+
+/// A triaxial test in a membrane (membraneCylinder), past consolidation at 100 kPa, in the
+/// middle of shear (between two samples).
+inline Model membraneTriaxialMidShear()
+{
+  return shearing(membraneCylinder(), Confinement::Membrane, "membraneTriaxialMidShear");
 }
 
 inline Model byName(const std::string& name)
@@ -94,7 +127,10 @@ inline Model byName(const std::string& name)
   if (name == "triaxial") {
     return triaxialMidShear();
   }
-  throw std::invalid_argument("unknown specimen '" + name + "' (settling, cemented, triaxial)");
+  if (name == "membrane") {
+    return membraneTriaxialMidShear();
+  }
+  throw std::invalid_argument("unknown specimen '" + name + "' (settling, cemented, triaxial, membrane)");
 }
 
 template <class T>
@@ -150,6 +186,9 @@ inline std::string firstDifference(const Model& a, const Model& b)
         std::memcmp(&x.elasticForce, &y.elasticForce, 8) || x.contacts != y.contacts) {
       return "walls/" + std::to_string(w);
     }
+  }
+  if (a.test.settings != b.test.settings) {
+    return "test/settings";
   }
   if (a.test.stage != b.test.stage || std::memcmp(&a.test.peakStress, &b.test.peakStress, 8) ||
       std::memcmp(&a.test.peakDeviator, &b.test.peakDeviator, 8) || a.test.settledChecks != b.test.settledChecks ||

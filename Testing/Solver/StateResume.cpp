@@ -1,6 +1,6 @@
 // rockdem_state_resume: exact resume across processes (Documentation/StateFile.md).
 //
-//   rockdem_state_resume start <settling|cemented|triaxial> <steps> <out.rdem>
+//   rockdem_state_resume start <settling|cemented|triaxial|membrane> <steps> <out.rdem>
 //       builds the specimen (StateFixtures.h), runs <steps> steps with one simulation and
 //       writes the state file;
 //   rockdem_state_resume continue <in.rdem> <steps> <out.rdem>
@@ -47,7 +47,7 @@ int main(int argc, char** argv)
       std::cout << "DIFFERENT: first difference in " << diff << "\n";
       return 1;
     }
-    std::cerr << "usage: rockdem_state_resume start <settling|cemented|triaxial> <steps> <out.rdem>\n"
+    std::cerr << "usage: rockdem_state_resume start <settling|cemented|triaxial|membrane> <steps> <out.rdem>\n"
                  "       rockdem_state_resume continue <in.rdem> <steps> <out.rdem>\n"
                  "       rockdem_state_resume compare <a.rdem> <b.rdem>\n";
     return 2;

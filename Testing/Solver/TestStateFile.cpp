@@ -307,6 +307,15 @@ TEST(StateFile, TriaxialMidShearResumesExactly)
   expectExactResume(start, 800, dir, "triaxial");
 }
 
+TEST(StateFile, MembraneTriaxialMidShearResumesExactly)
+{
+  TempDir dir;
+  const Model start = statetest::membraneTriaxialMidShear();
+  ASSERT_EQ(start.test.stage, TestStage::Shear);
+  ASSERT_EQ(start.test.settings.confinement, Confinement::Membrane);
+  expectExactResume(start, 800, dir, "membrane");
+}
+
 TEST(StateFile, TruncatedFilesAreRejected)
 {
   TempDir dir;

@@ -1,6 +1,6 @@
 # Exact resume in a fresh process: A runs 2N steps in one process; B runs N steps, saves,
 # and a NEW process loads the file and runs N more. A and B must be bitwise identical.
-# Usage: cmake -DEXE=... -DSPECIMEN=settling|cemented|triaxial -DSTEPS=N -DDIR=... -P state_resume.cmake
+# Usage: cmake -DEXE=... -DSPECIMEN=settling|cemented|triaxial|membrane -DSTEPS=N -DDIR=... -P state_resume.cmake
 file(MAKE_DIRECTORY "${DIR}")
 math(EXPR TWICE "2 * ${STEPS}")
 foreach(step

@@ -23,14 +23,23 @@ struct Particles;
 
 enum class TestMode : std::uint8_t { Off = 0, Compression = 1, Tension = 2, Triaxial = 3, Isotropic = 4, Brazilian = 5 };
 enum class TestStage : std::uint8_t { Idle = 0, Consolidate = 1, Shear = 2, Done = 3 };
+/// How Triaxial and Isotropic confine the specimen's sides: four rigid servo-controlled
+/// faces (a box), or a flexible membrane around a cylinder (dem/Membrane.h).
+enum class Confinement : std::uint8_t { RigidWalls = 0, Membrane = 1 };
 
 /// The guide's words for modes and stages ("Off", "Compression", ...; "consolidate", "shear").
 const char* modeName(TestMode mode);
 const char* stageName(TestStage stage);
+/// "Rigid Walls", "Membrane".
+const char* confinementName(Confinement confinement);
 
 /// Press parameters.
 struct LoadTestSettings {
   TestMode mode = TestMode::Off;
+  /// Triaxial and Isotropic: rigid side faces, or a membrane around a cylindrical specimen
+  /// along Axis (the confining stress on its lateral surface grains). Rigid Walls for files
+  /// written before Confinement existed.
+  Confinement confinement = Confinement::RigidWalls;
   int axis = 2;                  ///< platen axis: 0 X, 1 Y, 2 Z
   double confiningStress = 1e6;  ///< Pa, Triaxial and Isotropic (> 0 there)
   double strainRate = 0.1;       ///< 1/s, fraction of the starting length per second (> 0)

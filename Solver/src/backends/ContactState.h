@@ -54,6 +54,9 @@ struct ContactState {
   std::array<double, 6> wallPositionAtBuild{};
   std::array<bool, 6> wallActiveAtBuild{};
   std::vector<Vec3> undampedForce;   // N, net force before local damping (platen reactions)
+  // External forces on the particles (N, per slot; empty: none): the membrane of a
+  // cylindrical specimen (dem/Membrane.h), recomputed from the positions every step.
+  std::vector<Vec3> externalForce;
   // Bonds (static list, model.bonds order): slots of A and B, per-bond results, and
   // per-particle gather lists (entry 2 * bond + 1 if the particle is B).
   std::vector<std::uint32_t> bondI, bondJ;

@@ -4,6 +4,7 @@
 #include "dem/BondLaw.h"
 #include "dem/Bonds.h"
 #include "dem/Errors.h"
+#include "dem/Membrane.h"
 #include "dem/SizeClassGrids.h"
 #include "dem/WallControl.h"
 
@@ -80,6 +81,7 @@ CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double ti
   // Import the stored contact history (by global ids) into the neighbour list.
   rebuildNeighbours(true);
   buildBondLists();
+  membraneSurface(model, &state_.externalForce); // the membrane's forces at these positions
   if (model.clock.step == 0) {
     // A model that has never stepped has no forces yet: compute them (no history
     // increment) so that the first half kick sees gravity and the initial contacts.
@@ -566,6 +568,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   const double half = 0.5 * timestep_;
   const long count = static_cast<long>(n);
   const bool anyBonds = !im.bondI.empty();
+  const bool anyExternal = im.externalForce.size() == n; // the membrane's pushes
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
@@ -604,6 +607,9 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
           torque += im.bondTorqueI[b];
         }
       }
+    }
+    if (anyExternal) {
+      force += im.externalForce[i];
     }
     if (planar) {
       force.z() = 0.0;
@@ -810,6 +816,7 @@ void CpuBackend::step()
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
   }
+  membraneSurface(model_, &im.externalForce); // the membrane's forces at the new positions
 
   if (stale) {
     rebuildNeighbours(false);
