@@ -267,45 +267,10 @@ void setMaterial(dem::Model& m)
 }
 
 /// Reorders the particle slots along the cells of a grid (cell edge = largest diameter),
-/// visited in Morton (Z-curve) order. Ids move with their particles.
+/// visited in Morton (Z-curve) order (dem::spatialOrder). Ids move with their particles.
 void sortSpatially(dem::Model& m)
 {
-  dem::Particles& p = m.particles;
-  const std::size_t n = p.size();
-  if (n == 0) {
-    return;
-  }
-  const double cell = 2.0 * *std::max_element(p.radius.begin(), p.radius.end());
-  auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  std::vector<std::uint64_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const dem::Vec3 c = (p.position[i] - m.domain.origin) / cell;
-    key[i] = spread(static_cast<std::uint64_t>(std::max(0.0, c.x()))) |
-      spread(static_cast<std::uint64_t>(std::max(0.0, c.y()))) << 1 |
-      spread(static_cast<std::uint64_t>(std::max(0.0, c.z()))) << 2;
-  }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  dem::Particles q;
-  q.reserve(n);
-  for (std::size_t k : order) {
-    q.append(p.position[k], p.radius[k], p.id[k], p.flags[k]);
-    const std::size_t s = q.size() - 1;
-    q.velocity[s] = p.velocity[k];
-    q.angularVelocity[s] = p.angularVelocity[k];
-    q.displacement[s] = p.displacement[k];
-  }
-  p = std::move(q);
-  dem::updateMassProperties(m);
+  dem::permuteParticles(m.particles, dem::spatialOrder(m));
 }
 
 /// The benchmark model of `pack` with about `n` particles (the lattice rounds n to a cube).
