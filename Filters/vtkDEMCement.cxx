@@ -1,23 +1,19 @@
 #include "vtkDEMCement.h"
 
 #include "vtkDEMModelConversion.h"
-#include "vtkDEMPipelineTime.h"
 
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
 #include "dem/Errors.h"
 #include "dem/Model.h"
 
-#include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiBlockDataSet.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
 #include <vtkSmartPointer.h>
 
 #include <cstdint>
-#include <exception>
+#include <string>
 
 vtkStandardNewMacro(vtkDEMCement);
 
@@ -59,103 +55,70 @@ vtkDEMCement::~vtkDEMCement()
   delete this->Internals;
 }
 
-int vtkDEMCement::FillInputPortInformation(int, vtkInformation* info)
+const char* vtkDEMCement::StageName() const
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
-  return 1;
+  return "DEM Cement";
 }
 
-int vtkDEMCement::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+void vtkDEMCement::ClearResults()
 {
-  // An instantaneous stage: the upstream times (copied here by the pipeline) are not
-  // ours to publish. ParaView then leaves the upstream stage's times out of the animation.
-  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
-  return 1;
+  this->NumberOfBonds = 0;
+  this->BondedCoordination = 0.0;
+  this->NumberOfBrokenBonds = 0;
+  this->Damage = 0.0;
+  this->BrokenInTension = 0;
+  this->BrokenInShear = 0;
+  this->BondStiffness = 0.0;
 }
 
-int vtkDEMCement::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
-{
-  // A stepped upstream model is read at a fixed time, its last time step, so that
-  // changing the animation time never re-runs the stage before this one.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  rockdem::RequestLastUpstreamTime(inInfo);
-  return 1;
-}
-
-int vtkDEMCement::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+std::string vtkDEMCement::Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output)
 {
   vtkInternals& in = *this->Internals;
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
   auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
-
   const bool stale = !in.Valid || this->GetMTime() > in.BuildTime ||
     (input ? input->GetMTime() : 0) != in.InputTime;
+  std::string line; // nothing new to report when the cached model is re-output
   if (stale)
   {
     in.Valid = false;
     in.Output = nullptr;
-    try
-    {
-      dem::CementParameters params;
-      params.gapTolerance = this->GapTolerance;
-      params.bondRange = this->BondRange;
-      params.bondRadiusMultiplier = this->BondRadiusMultiplier;
-      params.bondModulus = this->BondModulus;
-      params.bondStiffnessRatio = this->BondStiffnessRatio;
-      params.bondNormalStiffness = this->BondNormalStiffness;
-      params.tensileStrength = this->TensileStrength;
-      params.cohesion = this->Cohesion;
-      params.frictionAngle = this->FrictionAngle;
-      params.momentContribution = this->MomentContribution;
-      params.strengthScatter = this->StrengthScatter;
-      params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
-      dem::validate(params);
+    dem::CementParameters params;
+    params.gapTolerance = this->GapTolerance;
+    params.bondRange = this->BondRange;
+    params.bondRadiusMultiplier = this->BondRadiusMultiplier;
+    params.bondModulus = this->BondModulus;
+    params.bondStiffnessRatio = this->BondStiffnessRatio;
+    params.bondNormalStiffness = this->BondNormalStiffness;
+    params.tensileStrength = this->TensileStrength;
+    params.cohesion = this->Cohesion;
+    params.frictionAngle = this->FrictionAngle;
+    params.momentContribution = this->MomentContribution;
+    params.strengthScatter = this->StrengthScatter;
+    params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
+    dem::validate(params);
 
-      dem::Model model = rockdem::MultiBlockToModel(input);
-      const dem::CementReport report = dem::cement(model, params);
-      const dem::BondCounts counts = dem::countBonds(model.bonds);
+    dem::Model model = rockdem::MultiBlockToModel(input);
+    const dem::CementReport report = dem::cement(model, params);
+    const dem::BondCounts counts = dem::countBonds(model.bonds);
 
-      auto cemented = vtkSmartPointer<vtkMultiBlockDataSet>::New();
-      rockdem::ModelToMultiBlock(model, cemented);
-      in.Output = cemented;
-      this->NumberOfBonds = static_cast<vtkIdType>(counts.installed);
-      this->BondedCoordination = report.bondedCoordination;
-      this->NumberOfBrokenBonds = static_cast<vtkIdType>(counts.broken);
-      this->Damage = counts.damage();
-      this->BrokenInTension = static_cast<vtkIdType>(counts.tension);
-      this->BrokenInShear = static_cast<vtkIdType>(counts.shear);
-      this->BondStiffness = report.bondStiffness;
-      this->LastMessageText = report.summary();
-      in.BuildTime = this->GetMTime();
-      in.InputTime = input ? input->GetMTime() : 0;
-      in.Valid = true;
-      vtkOutputWindowDisplayText(("DEM Cement: " + this->LastMessageText + "\n").c_str());
-    }
-    catch (const std::exception& e)
-    {
-      this->NumberOfBonds = 0;
-      this->BondedCoordination = 0.0;
-      this->NumberOfBrokenBonds = 0;
-      this->Damage = 0.0;
-      this->BrokenInTension = 0;
-      this->BrokenInShear = 0;
-      this->BondStiffness = 0.0;
-      this->LastMessageText = e.what();
-      vtkErrorMacro(<< e.what());
-      output->Initialize();
-      return 0;
-    }
+    auto cemented = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+    rockdem::ModelToMultiBlock(model, cemented);
+    in.Output = cemented;
+    this->NumberOfBonds = static_cast<vtkIdType>(counts.installed);
+    this->BondedCoordination = report.bondedCoordination;
+    this->NumberOfBrokenBonds = static_cast<vtkIdType>(counts.broken);
+    this->Damage = counts.damage();
+    this->BrokenInTension = static_cast<vtkIdType>(counts.tension);
+    this->BrokenInShear = static_cast<vtkIdType>(counts.shear);
+    this->BondStiffness = report.bondStiffness;
+    in.BuildTime = this->GetMTime();
+    in.InputTime = input ? input->GetMTime() : 0;
+    in.Valid = true;
+    line = report.summary();
   }
-
+  // A pure time change re-outputs the cemented model without cementing again.
   output->ShallowCopy(in.Output);
-  // The result does not depend on time: stamp the time asked for, so that the pipeline
-  // sees the request satisfied (the shallow copy carried no upstream time).
-  rockdem::StampRequestedTime(outInfo, output);
-  return 1;
+  return line;
 }
 
 void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
@@ -180,5 +143,4 @@ void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BrokenInTension: " << this->BrokenInTension << "\n";
   os << indent << "BrokenInShear: " << this->BrokenInShear << "\n";
   os << indent << "BondStiffness: " << this->BondStiffness << " N/m^3\n";
-  os << indent << "LastMessage: " << this->LastMessageText << "\n";
 }

@@ -19,15 +19,15 @@
 #define vtkDEMCement_h
 
 #include "RockDEMFiltersModule.h" // for export macro
-#include "vtkMultiBlockDataSetAlgorithm.h"
+#include "vtkDEMInstantStage.h"
 
 #include <string> // for the read-only message
 
-class ROCKDEMFILTERS_EXPORT vtkDEMCement : public vtkMultiBlockDataSetAlgorithm
+class ROCKDEMFILTERS_EXPORT vtkDEMCement : public vtkDEMInstantStage
 {
 public:
   static vtkDEMCement* New();
-  vtkTypeMacro(vtkDEMCement, vtkMultiBlockDataSetAlgorithm);
+  vtkTypeMacro(vtkDEMCement, vtkDEMInstantStage);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -115,17 +115,15 @@ public:
   vtkGetMacro(BrokenInTension, vtkIdType);
   vtkGetMacro(BrokenInShear, vtkIdType);
   vtkGetMacro(BondStiffness, double); ///< N/m^3, kn for two particles of the largest radius
-  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
 
 protected:
   vtkDEMCement();
   ~vtkDEMCement() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  const char* StageName() const override;
+  std::string Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output) override;
+  void ClearResults() override;
 
   double GapTolerance;
   double BondRange;
@@ -148,7 +146,6 @@ protected:
   vtkIdType BrokenInTension;
   vtkIdType BrokenInShear;
   double BondStiffness;
-  std::string LastMessageText;
 
 private:
   vtkDEMCement(const vtkDEMCement&) = delete;

@@ -30,7 +30,7 @@ std::vector<double> PackSignature(const dem::PackParameters& p, const dem::Domai
     d.section2D ? 1.0 : 0.0 };
   if (compacting)
   {
-    signature.insert(signature.end(), { c.stressCeiling, m.density, m.youngsModulus,
+    signature.insert(signature.end(), { c.stressCeiling, c.equilibriumRatio, m.density, m.youngsModulus,
       m.poissonsRatio, m.restitution });
   }
   return signature;
@@ -55,6 +55,7 @@ vtkDEMPackSource::vtkDEMPackSource()
   , FineZoneMinimumSize(0.001)
   , FineZoneMaximumSize(0.002)
   , MaximumLockedInStress(0.0)
+  , EquilibriumRatio(0.01)
   , LockedInStress(0.0)
   , LargestOverlap(0.0)
   , Internals(new vtkInternals)
@@ -150,6 +151,7 @@ int vtkDEMPackSource::RequestData(
     dem::CompactParameters compact;
     compact.targetPorosity = this->TargetPorosity;
     compact.stressCeiling = this->MaximumLockedInStress;
+    compact.equilibriumRatio = this->EquilibriumRatio;
     dem::validate(compact);
 
     const bool compacting = this->Commands.find('C') != std::string::npos;
@@ -224,6 +226,7 @@ void vtkDEMPackSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FineZoneMinimumSize: " << this->FineZoneMinimumSize << " m\n";
   os << indent << "FineZoneMaximumSize: " << this->FineZoneMaximumSize << " m\n";
   os << indent << "MaximumLockedInStress: " << this->MaximumLockedInStress << " Pa\n";
+  os << indent << "EquilibriumRatio: " << this->EquilibriumRatio << "\n";
   os << indent << "LockedInStress: " << this->LockedInStress << " Pa\n";
   os << indent << "LargestOverlap: " << this->LargestOverlap << "\n";
   os << indent << "Commands: " << this->Commands << "\n";

@@ -90,6 +90,14 @@ public:
   vtkGetMacro(MaximumLockedInStress, double);
   ///@}
 
+  ///@{
+  /// Unbalanced force ratio at which Compact Elements counts the pack relaxed, - (dimensionless),
+  /// [1e-6, 0.5], default 0.01; each growth stage relaxes to 5 x this. Lower packs denser
+  /// and takes more steps.
+  vtkSetMacro(EquilibriumRatio, double);
+  vtkGetMacro(EquilibriumRatio, double);
+  ///@}
+
   /// Read-only, from the last Compact Elements: the locked-in isotropic stress (Pa) and
   /// the largest overlap (over the smaller radius); 0 before any compaction.
   vtkGetMacro(LockedInStress, double);
@@ -124,6 +132,7 @@ protected:
   double FineZoneMinimumSize;
   double FineZoneMaximumSize;
   double MaximumLockedInStress;
+  double EquilibriumRatio;
   // Results, not parameters: setting them must not call Modified().
   double LockedInStress;
   double LargestOverlap;

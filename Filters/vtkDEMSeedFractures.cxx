@@ -2,7 +2,6 @@
 
 #include "vtkDEMFracturePolygons.h"
 #include "vtkDEMModelConversion.h"
-#include "vtkDEMPipelineTime.h"
 
 #include "dem/Errors.h"
 #include "dem/Model.h"
@@ -11,12 +10,10 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiBlockDataSet.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 
-#include <exception>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkDEMSeedFractures);
@@ -33,76 +30,54 @@ vtkDEMSeedFractures::~vtkDEMSeedFractures() = default;
 
 int vtkDEMSeedFractures::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 1 ? "vtkPolyData" : "vtkMultiBlockDataSet");
-  return 1;
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
 }
 
-int vtkDEMSeedFractures::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+const char* vtkDEMSeedFractures::StageName() const
 {
-  // An instantaneous stage: the upstream times are not ours to publish.
-  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
-  return 1;
+  return "DEM Seed Fractures";
 }
 
-int vtkDEMSeedFractures::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+void vtkDEMSeedFractures::ClearResults()
 {
-  // The model where its upstream run ended; the fractures at the time asked for (a DFN
-  // exported from a load test follows time).
-  rockdem::RequestLastUpstreamTime(inputVector[0]->GetInformationObject(0));
-  return 1;
-}
-
-int vtkDEMSeedFractures::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
-  auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
-  auto* fractures = vtkPolyData::GetData(inputVector[1], 0);
   this->NumberOfSeededBonds = 0;
   this->NumberOfPolygons = 0;
   this->NumberOfAlreadyBroken = 0;
-  try
+}
+
+std::string vtkDEMSeedFractures::Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output)
+{
+  // The model where its upstream run ended (the base reads it there); the fractures at
+  // the time asked for (a DFN exported from a load test follows time).
+  auto* fractures = vtkPolyData::GetData(inputVector[1], 0);
+  if (!fractures)
   {
-    if (!fractures)
-    {
-      throw dem::InputError("DEM Seed Fractures needs the fracture polygons on its Fractures input.");
-    }
-    // Polygons, triangles and quads (Polys), and triangle strips split into triangles.
-    const std::vector<dem::FracturePolygon> polygons = rockdem::FracturePolygons(fractures);
-    if (polygons.empty())
-    {
-      throw dem::InputError("DEM Seed Fractures: the Fractures input has no polygons (" +
-        std::to_string(fractures->GetNumberOfCells()) +
-        " cells, none of them a polygon, triangle, quad or triangle strip).");
-    }
-    dem::Model model = rockdem::MultiBlockToModel(input);
-    const dem::SeedReport report = dem::seedFractures(model, polygons);
-    rockdem::ModelToMultiBlock(model, output);
-    this->NumberOfSeededBonds = static_cast<vtkIdType>(report.seeded);
-    this->NumberOfPolygons = static_cast<vtkIdType>(report.polygons);
-    this->NumberOfAlreadyBroken = static_cast<vtkIdType>(report.alreadyBroken);
-    this->LastMessageText = report.summary();
-    vtkOutputWindowDisplayText(("DEM Seed Fractures: " + this->LastMessageText + "\n").c_str());
-    if (report.bonds == 0)
-    {
-      vtkWarningMacro(<< "DEM Seed Fractures: the model has no bonds, so nothing was seeded (cement it first).");
-    }
+    throw dem::InputError("DEM Seed Fractures needs the fracture polygons on its Fractures input.");
   }
-  catch (const std::exception& e)
+  // Polygons, triangles and quads (Polys), and triangle strips split into triangles.
+  const std::vector<dem::FracturePolygon> polygons = rockdem::FracturePolygons(fractures);
+  if (polygons.empty())
   {
-    this->NumberOfSeededBonds = 0;
-    this->NumberOfPolygons = 0;
-    this->NumberOfAlreadyBroken = 0;
-    this->LastMessageText = e.what();
-    vtkErrorMacro(<< e.what());
-    output->Initialize();
-    return 0;
+    throw dem::InputError("DEM Seed Fractures: the Fractures input has no polygons (" +
+      std::to_string(fractures->GetNumberOfCells()) +
+      " cells, none of them a polygon, triangle, quad or triangle strip).");
   }
-  rockdem::StampRequestedTime(outInfo, output);
-  return 1;
+  dem::Model model = rockdem::MultiBlockToModel(vtkMultiBlockDataSet::GetData(inputVector[0], 0));
+  const dem::SeedReport report = dem::seedFractures(model, polygons);
+  rockdem::ModelToMultiBlock(model, output);
+  this->NumberOfSeededBonds = static_cast<vtkIdType>(report.seeded);
+  this->NumberOfPolygons = static_cast<vtkIdType>(report.polygons);
+  this->NumberOfAlreadyBroken = static_cast<vtkIdType>(report.alreadyBroken);
+  if (report.bonds == 0)
+  {
+    vtkWarningMacro(<< "DEM Seed Fractures: the model has no bonds, so nothing was seeded (cement it first).");
+  }
+  return report.summary();
 }
 
 void vtkDEMSeedFractures::PrintSelf(ostream& os, vtkIndent indent)
@@ -111,5 +86,4 @@ void vtkDEMSeedFractures::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SeededBonds: " << this->NumberOfSeededBonds << "\n";
   os << indent << "Polygons: " << this->NumberOfPolygons << "\n";
   os << indent << "AlreadyBroken: " << this->NumberOfAlreadyBroken << "\n";
-  os << indent << "LastMessage: " << this->LastMessageText << "\n";
 }

@@ -16,15 +16,13 @@
 #define vtkDEMSeedFractures_h
 
 #include "RockDEMFiltersModule.h" // for export macro
-#include "vtkMultiBlockDataSetAlgorithm.h"
+#include "vtkDEMInstantStage.h"
 
-#include <string> // for the read-only message
-
-class ROCKDEMFILTERS_EXPORT vtkDEMSeedFractures : public vtkMultiBlockDataSetAlgorithm
+class ROCKDEMFILTERS_EXPORT vtkDEMSeedFractures : public vtkDEMInstantStage
 {
 public:
   static vtkDEMSeedFractures* New();
-  vtkTypeMacro(vtkDEMSeedFractures, vtkMultiBlockDataSetAlgorithm);
+  vtkTypeMacro(vtkDEMSeedFractures, vtkDEMInstantStage);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Connects the fracture polygons (input port 1).
@@ -35,7 +33,6 @@ public:
   vtkGetMacro(NumberOfSeededBonds, vtkIdType);   ///< Seeded Bonds: bonds broken now
   vtkGetMacro(NumberOfPolygons, vtkIdType);      ///< fracture polygons read
   vtkGetMacro(NumberOfAlreadyBroken, vtkIdType); ///< crossing bonds that were already broken
-  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
 
 protected:
@@ -43,14 +40,13 @@ protected:
   ~vtkDEMSeedFractures() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  const char* StageName() const override;
+  std::string Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output) override;
+  void ClearResults() override;
 
   vtkIdType NumberOfSeededBonds;
   vtkIdType NumberOfPolygons;
   vtkIdType NumberOfAlreadyBroken;
-  std::string LastMessageText;
 
 private:
   vtkDEMSeedFractures(const vtkDEMSeedFractures&) = delete;

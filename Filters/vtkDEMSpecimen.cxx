@@ -1,18 +1,13 @@
 #include "vtkDEMSpecimen.h"
 
 #include "vtkDEMModelConversion.h"
-#include "vtkDEMPipelineTime.h"
 
 #include "dem/Model.h"
 #include "dem/Specimen.h"
 
-#include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
-
-#include <exception>
 
 vtkStandardNewMacro(vtkDEMSpecimen);
 
@@ -32,64 +27,35 @@ vtkDEMSpecimen::vtkDEMSpecimen()
 
 vtkDEMSpecimen::~vtkDEMSpecimen() = default;
 
-int vtkDEMSpecimen::FillInputPortInformation(int, vtkInformation* info)
+const char* vtkDEMSpecimen::StageName() const
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
-  return 1;
+  return "DEM Specimen";
 }
 
-int vtkDEMSpecimen::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+void vtkDEMSpecimen::ClearResults()
 {
-  // An instantaneous stage (as DEM Cement): the upstream times are not ours to publish.
-  rockdem::PublishNoTimeSteps(outputVector->GetInformationObject(0));
-  return 1;
-}
-
-int vtkDEMSpecimen::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
-{
-  rockdem::RequestLastUpstreamTime(inputVector[0]->GetInformationObject(0));
-  return 1;
-}
-
-int vtkDEMSpecimen::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  auto* output = vtkMultiBlockDataSet::GetData(outputVector, 0);
-  auto* input = vtkMultiBlockDataSet::GetData(inputVector[0], 0);
   this->NumberOfParticles = 0;
   this->RemovedParticles = 0;
   this->SpecimenPorosity = 0.0;
-  try
-  {
-    dem::SpecimenSettings s;
-    s.shape = dem::specimenShape(this->Shape);
-    s.axis = this->Axis;
-    s.centerOnModel = this->CenterOnModel != 0;
-    s.center = dem::Vec3(this->Center[0], this->Center[1], this->Center[2]);
-    s.size = dem::Vec3(this->Size[0], this->Size[1], this->Size[2]);
-    s.diameter = this->Diameter;
-    s.length = this->Length;
-    dem::Model model = rockdem::MultiBlockToModel(input);
-    const dem::SpecimenReport report = dem::carveSpecimen(model, s);
-    rockdem::ModelToMultiBlock(model, output);
-    this->NumberOfParticles = static_cast<vtkIdType>(report.kept);
-    this->RemovedParticles = static_cast<vtkIdType>(report.removed.particles);
-    this->SpecimenPorosity = report.porosity;
-    this->LastMessageText = report.summary();
-    vtkOutputWindowDisplayText(("DEM Specimen: " + this->LastMessageText + "\n").c_str());
-  }
-  catch (const std::exception& e)
-  {
-    this->LastMessageText = e.what();
-    vtkErrorMacro(<< e.what());
-    output->Initialize();
-    return 0;
-  }
-  rockdem::StampRequestedTime(outInfo, output);
-  return 1;
+}
+
+std::string vtkDEMSpecimen::Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output)
+{
+  dem::SpecimenSettings s;
+  s.shape = dem::specimenShape(this->Shape);
+  s.axis = this->Axis;
+  s.centerOnModel = this->CenterOnModel != 0;
+  s.center = dem::Vec3(this->Center[0], this->Center[1], this->Center[2]);
+  s.size = dem::Vec3(this->Size[0], this->Size[1], this->Size[2]);
+  s.diameter = this->Diameter;
+  s.length = this->Length;
+  dem::Model model = rockdem::MultiBlockToModel(vtkMultiBlockDataSet::GetData(inputVector[0], 0));
+  const dem::SpecimenReport report = dem::carveSpecimen(model, s);
+  rockdem::ModelToMultiBlock(model, output);
+  this->NumberOfParticles = static_cast<vtkIdType>(report.kept);
+  this->RemovedParticles = static_cast<vtkIdType>(report.removed.particles);
+  this->SpecimenPorosity = report.porosity;
+  return report.summary();
 }
 
 void vtkDEMSpecimen::PrintSelf(ostream& os, vtkIndent indent)
@@ -105,5 +71,4 @@ void vtkDEMSpecimen::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
   os << indent << "RemovedParticles: " << this->RemovedParticles << "\n";
   os << indent << "SpecimenPorosity: " << this->SpecimenPorosity << "\n";
-  os << indent << "LastMessage: " << this->LastMessageText << "\n";
 }

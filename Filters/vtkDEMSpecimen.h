@@ -19,15 +19,13 @@
 #define vtkDEMSpecimen_h
 
 #include "RockDEMFiltersModule.h" // for export macro
-#include "vtkMultiBlockDataSetAlgorithm.h"
+#include "vtkDEMInstantStage.h"
 
-#include <string> // for the read-only message
-
-class ROCKDEMFILTERS_EXPORT vtkDEMSpecimen : public vtkMultiBlockDataSetAlgorithm
+class ROCKDEMFILTERS_EXPORT vtkDEMSpecimen : public vtkDEMInstantStage
 {
 public:
   static vtkDEMSpecimen* New();
-  vtkTypeMacro(vtkDEMSpecimen, vtkMultiBlockDataSetAlgorithm);
+  vtkTypeMacro(vtkDEMSpecimen, vtkDEMInstantStage);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -79,17 +77,15 @@ public:
   vtkGetMacro(NumberOfParticles, vtkIdType);
   vtkGetMacro(RemovedParticles, vtkIdType);
   vtkGetMacro(SpecimenPorosity, double);
-  const char* GetLastMessage() const { return this->LastMessageText.c_str(); }
   ///@}
 
 protected:
   vtkDEMSpecimen();
   ~vtkDEMSpecimen() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  const char* StageName() const override;
+  std::string Execute(vtkInformationVector** inputVector, vtkMultiBlockDataSet* output) override;
+  void ClearResults() override;
 
   int Shape;
   int Axis;
@@ -102,7 +98,6 @@ protected:
   vtkIdType NumberOfParticles;
   vtkIdType RemovedParticles;
   double SpecimenPorosity;
-  std::string LastMessageText;
 
 private:
   vtkDEMSpecimen(const vtkDEMSpecimen&) = delete;

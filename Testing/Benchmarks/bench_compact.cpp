@@ -5,9 +5,10 @@
 // the wall-clock time of each command. Material: E 1e8 Pa, nu 0.25, 2650 kg/m^3.
 //
 //   rockdem_bench_compact [--sizes 10000,100000] [--2d] [--target 0.36] [--threads 2]
-//                         [--ceiling Pa] [--quick]
+//                         [--ceiling Pa] [--equilibrium-ratio r] [--periodic] [--quick]
 #include "CommaList.h"
 #include "dem/Pack.h"
+#include "dem/SphereBoxVolume.h"
 
 #include <chrono>
 #include <cmath>
@@ -26,6 +27,7 @@ struct Options {
   bool planar = false;
   double target = -1.0; // default: 0.36 in 3D, 0.16 in 2D
   double ceiling = 0.0;
+  double equilibriumRatio = 0.01;
   int threads = 0;
   bool quick = false;
   bool periodic = false;
@@ -44,6 +46,8 @@ Options parse(int argc, char** argv)
       o.target = std::atof(argv[++i]);
     } else if (a == "--ceiling" && i + 1 < argc) {
       o.ceiling = std::atof(argv[++i]);
+    } else if (a == "--equilibrium-ratio" && i + 1 < argc) {
+      o.equilibriumRatio = std::atof(argv[++i]);
     } else if (a == "--threads" && i + 1 < argc) {
       o.threads = std::atoi(argv[++i]);
     } else if (a == "--periodic") {
@@ -51,7 +55,7 @@ Options parse(int argc, char** argv)
     } else if (a == "--quick") {
       o.quick = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--sizes N1,N2] [--2d] [--target n] [--ceiling Pa] [--threads T] [--quick]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes N1,N2] [--2d] [--target n] [--ceiling Pa] [--equilibrium-ratio r] [--periodic] [--threads T] [--quick]\n", argv[0]);
       std::exit(2);
     }
   }
@@ -121,6 +125,7 @@ int main(int argc, char** argv)
     dem::CompactParameters c;
     c.targetPorosity = options.target;
     c.stressCeiling = options.ceiling;
+    c.equilibriumRatio = options.equilibriumRatio;
     start = std::chrono::steady_clock::now();
     const dem::CompactReport r = dem::compactElements(model, c);
     const double seconds = secondsSince(start);
@@ -128,6 +133,22 @@ int main(int argc, char** argv)
                 r.porosityBefore, r.porosity, r.lockedInStress, 100.0 * r.largestOverlap, r.stages,
                 static_cast<long long>(r.steps), seconds,
                 r.targetReached ? "target reached" : (r.jammed ? "jammed at the ceiling" : "not reached"));
+    {
+      const auto& P = model.particles;
+      const auto& D = model.domain;
+      for (double k : {1.0, 2.0, 4.0}) {
+        const double m = k * 2.0 * params.maximumSize;
+        dem::Vec3 lo = D.origin, hi = D.upper();
+        for (int a = 0; a < (options.planar ? 2 : 3); ++a) { lo[a] += m; hi[a] -= m; }
+        double solid = 0.0;
+        for (std::size_t i = 0; i < P.size(); ++i) {
+          solid += options.planar ? dem::discRectangleArea(P.position[i].x(), P.position[i].y(), P.radius[i], lo.x(), lo.y(), hi.x(), hi.y())
+                                  : dem::sphereBoxVolume(P.position[i], P.radius[i], lo, hi);
+        }
+        const double vol = options.planar ? (hi.x() - lo.x()) * (hi.y() - lo.y()) : (hi - lo).prod();
+        std::printf("   interior (walls minus %.0f largest diameters): porosity %.4f\n", k, 1.0 - solid / vol);
+      }
+    }
     std::fflush(stdout);
   }
   return 0;
