@@ -271,6 +271,31 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
     return report;
   }
 
+  // The relaxation steps the particles in a space-filling order (neighbours in space near
+  // each other in memory: 40 % less CPU time on a 20k pack than in placement order,
+  // Documentation/Benchmarks-Pack.md); the users' order comes back at the end, whatever
+  // happens.
+  struct SpatialOrder {
+    Particles& particles;
+    std::vector<std::size_t> order;
+    void restore()
+    {
+      std::vector<std::size_t> back(order.size());
+      for (std::size_t s = 0; s < order.size(); ++s) {
+        back[order[s]] = s;
+      }
+      permuteParticles(particles, back);
+      order.clear();
+    }
+    ~SpatialOrder()
+    {
+      if (!order.empty()) {
+        restore();
+      }
+    }
+  } spatial{ model.particles, spatialOrder(model) };
+  permuteParticles(model.particles, spatial.order);
+
   // The relaxation runs frictionless, without gravity, in the closed box, from rest.
   const Material material = model.material;
   const Vec3 gravity = model.gravity;
@@ -378,7 +403,8 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
   report.lockedInStress = state.meanStress;
   report.unbalancedForceRatio = state.unbalancedForceRatio;
 
-  // A fresh pack: at rest, never stepped, the user's material and settings back.
+  // A fresh pack in the users' order: at rest, never stepped, their material and settings back.
+  spatial.restore();
   model.material = material;
   model.gravity = gravity;
   model.solver = solver;

@@ -89,6 +89,73 @@ void keepOnly(std::vector<T>& values, const std::vector<std::uint8_t>& keep)
 }
 } // namespace
 
+// ---------------------------------------------------------------------------------------
+// Spatial order
+
+std::vector<std::size_t> spatialOrder(const Model& model)
+{
+  const Particles& p = model.particles;
+  const std::size_t n = p.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    order[i] = i;
+  }
+  if (n == 0) {
+    return order;
+  }
+  const double cell = 2.0 * *std::max_element(p.radius.begin(), p.radius.end());
+  constexpr double kLargestCell = 2097151.0; // 21 bits per axis
+  auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  auto cellOf = [&](double x) {
+    return static_cast<std::uint64_t>(std::min(kLargestCell, std::max(0.0, std::floor(x / cell))));
+  };
+  std::vector<std::uint64_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 c = p.position[i] - model.domain.origin;
+    key[i] = spread(cellOf(c.x())) | spread(cellOf(c.y())) << 1 | spread(cellOf(c.z())) << 2;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  return order;
+}
+
+namespace {
+template <class T>
+void permute(std::vector<T>& values, const std::vector<std::size_t>& order)
+{
+  if (values.empty()) {
+    return;
+  }
+  std::vector<T> out(values.size());
+  for (std::size_t s = 0; s < order.size(); ++s) {
+    out[s] = values[order[s]];
+  }
+  values.swap(out);
+}
+} // namespace
+
+void permuteParticles(Particles& p, const std::vector<std::size_t>& order)
+{
+  static_assert(sizeof(Particles) == 11 * sizeof(std::vector<double>), "permute the new particle array below");
+  permute(p.position, order);
+  permute(p.velocity, order);
+  permute(p.angularVelocity, order);
+  permute(p.displacement, order);
+  permute(p.force, order);
+  permute(p.torque, order);
+  permute(p.radius, order);
+  permute(p.mass, order);
+  permute(p.inertia, order);
+  permute(p.id, order);
+  permute(p.flags, order);
+}
+
 std::string RemovedParticles::summary(const std::string& why) const
 {
   if (particles == 0) {

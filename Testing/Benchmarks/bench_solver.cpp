@@ -26,7 +26,10 @@
 //                        [--repeat R] [--csv FILE] [--quick]
 //   rockdem_bench_solver --sweep [--csv FILE] [--sweep-particles 5000] [--safeties 0.05,0.1,...]
 //   rockdem_bench_solver --write-pack FILE --pack poly --sizes 10000
+//   rockdem_bench_solver --stream [--threads 1,2] [--repeat 5]
 //
+// --stream measures the machine's memory bandwidth (a STREAM-like triad over 768 MiB), the
+// bound on the step's memory traffic (Documentation/Benchmarks-Solver.md section 5).
 // --quick (the ctest smoke test, ~1 s): 2000 particles x 50 steps per pack and thread
 // count, then a two-point sweep (0.1 and 3.0) on reduced workloads.
 // --repeat R runs each configuration R times and reports the fastest (the machine may be
@@ -107,6 +110,7 @@ struct Options {
   int repeat = 1;  // runs per configuration; the fastest is reported
   bool quick = false;
   bool sweep = false;
+  bool stream = false;
   std::string csv;
   std::string writePack;
   std::string pack = "poly"; // for --write-pack
@@ -122,8 +126,9 @@ struct Options {
     "          [--threads 1,2]\n"
     "          [--damping A] [--restitution E] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
     "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
+    "       %s --stream [--threads 1,2] [--repeat R]\n"
     "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--restitution E] [--sort]\n",
-    argv0, argv0, argv0);
+    argv0, argv0, argv0, argv0);
   std::exit(2);
 }
 
@@ -155,6 +160,8 @@ Options parse(int argc, char** argv)
       o.sort = true;
     } else if (a == "--quick") {
       o.quick = true;
+    } else if (a == "--stream") {
+      o.stream = true;
     } else if (a == "--sweep") {
       o.sweep = true;
     } else if (a == "--csv" && hasValue) {
@@ -267,45 +274,10 @@ void setMaterial(dem::Model& m)
 }
 
 /// Reorders the particle slots along the cells of a grid (cell edge = largest diameter),
-/// visited in Morton (Z-curve) order. Ids move with their particles.
+/// visited in Morton (Z-curve) order (dem::spatialOrder). Ids move with their particles.
 void sortSpatially(dem::Model& m)
 {
-  dem::Particles& p = m.particles;
-  const std::size_t n = p.size();
-  if (n == 0) {
-    return;
-  }
-  const double cell = 2.0 * *std::max_element(p.radius.begin(), p.radius.end());
-  auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  std::vector<std::uint64_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const dem::Vec3 c = (p.position[i] - m.domain.origin) / cell;
-    key[i] = spread(static_cast<std::uint64_t>(std::max(0.0, c.x()))) |
-      spread(static_cast<std::uint64_t>(std::max(0.0, c.y()))) << 1 |
-      spread(static_cast<std::uint64_t>(std::max(0.0, c.z()))) << 2;
-  }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  dem::Particles q;
-  q.reserve(n);
-  for (std::size_t k : order) {
-    q.append(p.position[k], p.radius[k], p.id[k], p.flags[k]);
-    const std::size_t s = q.size() - 1;
-    q.velocity[s] = p.velocity[k];
-    q.angularVelocity[s] = p.angularVelocity[k];
-    q.displacement[s] = p.displacement[k];
-  }
-  p = std::move(q);
-  dem::updateMassProperties(m);
+  dem::permuteParticles(m.particles, dem::spatialOrder(m));
 }
 
 /// The benchmark model of `pack` with about `n` particles (the lattice rounds n to a cube).
@@ -820,10 +792,46 @@ int runSweep(const Options& o)
 
 } // namespace
 
+/// The memory bandwidth bound of this machine: a STREAM-like triad a = b + s c over three
+/// arrays of 32 Mi doubles (768 MiB, far above any cache), counted as 3 x 8 bytes per
+/// element (the write-allocate read of a is not counted, as in STREAM). Fastest of --repeat.
+int runStream(const Options& o)
+{
+  const std::size_t n = std::size_t{ 1 } << 25;
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  std::vector<int> threadList = o.threads;
+  if (threadList.empty()) {
+    threadList.push_back(1);
+    if (coreCount() > 1) {
+      threadList.push_back(coreCount());
+    }
+  }
+  std::printf("STREAM-like triad, %zu doubles per array; GB/s = 24 bytes x elements / s (fastest of %d)\n", n,
+              std::max(1, o.repeat));
+  const long count = static_cast<long>(n);
+  for (int threads : threadList) {
+    double best = 0.0;
+    for (int rep = 0; rep < std::max(1, o.repeat); ++rep) {
+      const auto start = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (long i = 0; i < count; ++i) {
+        a[i] = b[i] + 3.0 * c[i];
+      }
+      const double seconds = secondsSince(start);
+      best = std::max(best, 24.0 * static_cast<double>(n) / seconds / 1e9);
+    }
+    std::printf("threads %d: %.2f GB/s (check %g)\n", threads, best, a[n / 2]);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv)
 {
   Options o = parse(argc, argv);
   try {
+    if (o.stream) {
+      return runStream(o);
+    }
     if (!o.writePack.empty()) {
       return writePack(o);
     }

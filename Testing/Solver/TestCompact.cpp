@@ -215,10 +215,18 @@ TEST(Compact, APackComesOutFreshAndDeterministic)
   Model b = a;
   b.solver.threads = 2;
   b.solver.parallelThreshold = 0; // the same result on two threads
+  const std::vector<std::int64_t> ids = a.particles.id;
   CompactParameters c;
   c.targetPorosity = 0.45;
+  const Particles placed = a.particles;
   const CompactReport ra = compactElements(a, c);
   const CompactReport rb = compactElements(b, c);
+  // The particles come back in the users' order (compaction steps them in a spatial order):
+  // ids in place, and every radius grown from its own by the one factor.
+  EXPECT_EQ(a.particles.id, ids);
+  for (std::size_t i = 0; i < a.particles.size(); ++i) {
+    ASSERT_NEAR(a.particles.radius[i] / placed.radius[i], a.particles.radius[0] / placed.radius[0], 1e-12);
+  }
   EXPECT_EQ(a.particles.position, b.particles.position);
   EXPECT_EQ(a.particles.radius, b.particles.radius);
   EXPECT_EQ(ra.summary(), rb.summary());

@@ -296,10 +296,10 @@ TEST(Faults, ThreadsSayWhatRunsAndAbsurdCountsAreRefused)
   m.solver.threads = 8;
   Simulation sim(m);
   EXPECT_EQ(sim.path(), "CPU serial (" + std::to_string(m.particles.size()) +
-                          " particles, below the parallel threshold of 20000; threads are used from there on)");
+                          " particles, below the parallel threshold of 2000; threads are used from there on)");
   m.solver.threads = 1;
   EXPECT_EQ(Simulation(m).path(), "CPU serial (" + std::to_string(m.particles.size()) +
-                                    " particles, below the parallel threshold of 20000)");
+                                    " particles, below the parallel threshold of 2000)");
   m.solver.parallelThreshold = 0;
   EXPECT_EQ(Simulation(m).path(), "CPU serial (Threads = 1)");
   m.solver.threads = 2;

@@ -137,6 +137,16 @@ inline Vec3 minimumImage(const Domain& domain, const Vec3& a, const Vec3& b)
 /// their contact history and every bond that joins them; the others keep their order.
 RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& remove);
 
+/// The particle slots in a space-filling order: the cells of a grid whose edge is the
+/// largest diameter, visited along a Morton (Z-order) curve, slots within a cell in their
+/// present order. Neighbours in space then sit near each other in memory. Deterministic.
+std::vector<std::size_t> spatialOrder(const Model& model);
+
+/// Reorders every per-particle array: slot s receives the particle of slot order[s]
+/// (order is a permutation of the slots). Ids move with their particles; contact history
+/// and bonds are keyed by id and stay valid.
+void permuteParticles(Particles& particles, const std::vector<std::size_t>& order);
+
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);
 
