@@ -15,15 +15,10 @@ import os
 import re
 import sys
 
-try:
-    import matplotlib
-except ImportError:  # e.g. a pyenv/venv python3 first on PATH: use the Debian one
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    sys.exit("matplotlib is missing: apt-get install python3-matplotlib")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rockdem_plotting import pyplot  # noqa: E402
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = pyplot()
 
 PATTERNS = {
     "particles": r"specimen: (\d+) particles",
