@@ -37,6 +37,7 @@ vtkDEMCement::vtkDEMCement()
   , Cohesion(20.0e6)
   , FrictionAngle(30.0)
   , MomentContribution(1.0)
+  , SofteningRatio(0.0)
   , StrengthScatter(0.0)
   , RandomSeed(1)
   , NumberOfBonds(0)
@@ -93,6 +94,7 @@ std::string vtkDEMCement::Execute(vtkInformationVector** inputVector, vtkMultiBl
     params.cohesion = this->Cohesion;
     params.frictionAngle = this->FrictionAngle;
     params.momentContribution = this->MomentContribution;
+    params.softeningRatio = this->SofteningRatio;
     params.strengthScatter = this->StrengthScatter;
     params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
     dem::validate(params);
@@ -134,6 +136,7 @@ void vtkDEMCement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cohesion: " << this->Cohesion << " Pa\n";
   os << indent << "FrictionAngle: " << this->FrictionAngle << " degrees\n";
   os << indent << "MomentContribution: " << this->MomentContribution << "\n";
+  os << indent << "SofteningRatio: " << this->SofteningRatio << "\n";
   os << indent << "StrengthScatter: " << this->StrengthScatter << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "Bonds: " << this->NumberOfBonds << "\n";

@@ -95,6 +95,14 @@ public:
   ///@}
 
   ///@{
+  /// Tension softening, dimensionless, [0, 100]: after reaching its tensile strength a bond's
+  /// peripheral stress falls linearly to zero over this many times the stretch that reached
+  /// the strength (0 = brittle, Potyondy & Cundall 2004).
+  vtkSetMacro(SofteningRatio, double);
+  vtkGetMacro(SofteningRatio, double);
+  ///@}
+
+  ///@{
   /// Coefficient of variation of the bond strengths, [0, 1]; 0 = every bond identical.
   vtkSetMacro(StrengthScatter, double);
   vtkGetMacro(StrengthScatter, double);
@@ -135,6 +143,7 @@ protected:
   double Cohesion;
   double FrictionAngle;
   double MomentContribution;
+  double SofteningRatio;
   double StrengthScatter;
   int RandomSeed;
 

@@ -476,10 +476,12 @@ void BondsToPolyData(const dem::Model& model, vtkPolyData* output)
   cd->AddArray(ScalarArray("Cohesion", b.cohesion));
   cd->AddArray(ScalarArray("FrictionAngle", b.frictionAngle));
   cd->AddArray(ScalarArray("MomentContribution", b.momentContribution));
+  cd->AddArray(ScalarArray("SofteningRatio", b.softening));
   cd->AddArray(ScalarArray("NormalForce", b.normalForce));
   cd->AddArray(VectorArray("ShearForce", b.shearForce));
   cd->AddArray(ScalarArray("TwistingMoment", b.twistingMoment));
   cd->AddArray(VectorArray("BendingMoment", b.bendingMoment));
+  cd->AddArray(ScalarArray("SofteningDamage", b.damage));
   cd->AddArray(CopiedArray<vtkUnsignedCharArray>("FailureMode", b.failure));
   cd->AddArray(ScalarArray("FailureTime", b.failureTime));
   cd->AddArray(VectorArray("FailurePosition", b.failurePosition));
@@ -740,10 +742,26 @@ void BondsFromPolyData(vtkMultiBlockDataSet* input, dem::Model& model)
   {
     b.momentContribution.assign(static_cast<std::size_t>(n), 1.0); // made before the factor
   }
+  if (cd->GetArray("SofteningRatio"))
+  {
+    scalars("SofteningRatio", b.softening);
+  }
+  else
+  {
+    b.softening.assign(static_cast<std::size_t>(n), 0.0); // made before tension softening: brittle
+  }
   scalars("NormalForce", b.normalForce);
   vectors("ShearForce", b.shearForce);
   scalars("TwistingMoment", b.twistingMoment);
   vectors("BendingMoment", b.bendingMoment);
+  if (cd->GetArray("SofteningDamage"))
+  {
+    scalars("SofteningDamage", b.damage);
+  }
+  else
+  {
+    b.damage.assign(static_cast<std::size_t>(n), 0.0);
+  }
   b.failure.assign(mode->GetPointer(0), mode->GetPointer(0) + n);
   scalars("FailureTime", b.failureTime);
   vectors("FailurePosition", b.failurePosition);

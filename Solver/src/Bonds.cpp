@@ -1,5 +1,7 @@
 #include "dem/Bonds.h"
 
+
+#include <algorithm>
 #include <cmath>
 
 namespace dem {
@@ -18,10 +20,12 @@ void Bonds::clear()
   cohesion.clear();
   frictionAngle.clear();
   momentContribution.clear();
+  softening.clear();
   normalForce.clear();
   shearForce.clear();
   twistingMoment.clear();
   bendingMoment.clear();
+  damage.clear();
   failure.clear();
   failureTime.clear();
   failurePosition.clear();
@@ -29,7 +33,7 @@ void Bonds::clear()
 }
 
 void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
-                   double sigmaC, double c, double phi, double beta)
+                   double sigmaC, double c, double phi, double beta, double softeningRatio)
 {
   idA.push_back(a);
   idB.push_back(b);
@@ -40,10 +44,12 @@ void Bonds::append(std::int64_t a, std::int64_t b, double bondRadius, double kn,
   cohesion.push_back(c);
   frictionAngle.push_back(phi);
   momentContribution.push_back(beta);
+  softening.push_back(softeningRatio);
   normalForce.push_back(0.0);
   shearForce.push_back(Vec3::Zero());
   twistingMoment.push_back(0.0);
   bendingMoment.push_back(Vec3::Zero());
+  damage.push_back(0.0);
   failure.push_back(static_cast<std::uint8_t>(BondFailure::Intact));
   failureTime.push_back(0.0);
   failurePosition.push_back(Vec3::Zero());
@@ -113,14 +119,51 @@ BondStresses bondStresses(const BondSection& s, double bondRadius, double normal
   return out;
 }
 
+namespace {
+// Mohr-Coulomb: the shear strength grows with the compressive normal stress.
+bool failsInShear(const BondStresses& stresses, double cohesion, double frictionAngle)
+{
+  return stresses.tauMax >= cohesion + stresses.compressive * std::tan(frictionAngle);
+}
+} // namespace
+
 BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
                         double frictionAngle)
 {
   if (stresses.sigmaMax >= tensileStrength) {
     return BondFailure::Tension;
   }
-  // Mohr-Coulomb: the shear strength grows with the compressive normal stress.
-  if (stresses.tauMax >= cohesion + stresses.compressive * std::tan(frictionAngle)) {
+  if (failsInShear(stresses, cohesion, frictionAngle)) {
+    return BondFailure::Shear;
+  }
+  return BondFailure::Intact;
+}
+
+double softeningDamage(double stressRatio, double softeningRatio)
+{
+  if (!(stressRatio > 1.0)) {
+    return 0.0;
+  }
+  const double r = softeningRatio;
+  if (stressRatio >= 1.0 + r) {
+    return 1.0;
+  }
+  // (1 - D) x = (1 + r - x) / r: the applied stress on the line from (1, 1) to (1 + r, 0).
+  return 1.0 - (1.0 + r - stressRatio) / (r * stressRatio);
+}
+
+BondFailure softenedBondFailure(const BondStresses& elastic, double tensileStrength, double cohesion,
+                                double frictionAngle, double softeningRatio, double& damage)
+{
+  if (!(softeningRatio > 0.0)) {
+    return bondFailure(elastic, tensileStrength, cohesion, frictionAngle);
+  }
+  const double ratio = elastic.sigmaMax / tensileStrength;
+  if (ratio >= 1.0 + softeningRatio) {
+    return BondFailure::Tension;
+  }
+  damage = std::max(damage, softeningDamage(ratio, softeningRatio));
+  if (failsInShear(elastic, cohesion, frictionAngle)) {
     return BondFailure::Shear;
   }
   return BondFailure::Intact;

@@ -83,6 +83,7 @@ void validate(const CementParameters& p)
   }
   requireInRange("Strength Scatter", p.strengthScatter, 0.0, 1.0);
   requireInRange("Moment Contribution", p.momentContribution, 0.0, 1.0);
+  requireInRange("Softening Ratio", p.softeningRatio, 0.0, kMaxSofteningRatio);
 }
 
 std::string CementReport::summary() const
@@ -158,7 +159,7 @@ CementReport cement(Model& model, const CementParameters& params)
     model.bonds.append(c.a, c.b, params.bondRadiusMultiplier * std::min(ri, rj), kn, ks,
       params.tensileStrength * strengthFactor(params.randomSeed, c.a, c.b, 0, params.strengthScatter),
       params.cohesion * strengthFactor(params.randomSeed, c.a, c.b, 1, params.strengthScatter), phi,
-      params.momentContribution);
+      params.momentContribution, params.softeningRatio);
   }
   report.bonds = model.bonds.size();
   report.particles = p.size();

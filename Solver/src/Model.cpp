@@ -172,7 +172,7 @@ RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& 
   // added there (these fail to compile when a struct gains an array).
   static_assert(sizeof(Particles) == 11 * sizeof(std::vector<double>), "filter the new particle array below");
   static_assert(sizeof(ContactHistory) == 4 * sizeof(std::vector<double>), "filter the new contact array below");
-  static_assert(sizeof(Bonds) == 17 * sizeof(std::vector<double>), "filter the new bond array below");
+  static_assert(sizeof(Bonds) == 19 * sizeof(std::vector<double>), "filter the new bond array below");
   RemovedParticles removed;
   Particles& p = model.particles;
   std::vector<std::int64_t> gone; // ids, sorted
@@ -230,6 +230,8 @@ RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& 
   keepOnly(b.cohesion, keepBond);
   keepOnly(b.frictionAngle, keepBond);
   keepOnly(b.momentContribution, keepBond);
+  keepOnly(b.softening, keepBond);
+  keepOnly(b.damage, keepBond);
   keepOnly(b.normalForce, keepBond);
   keepOnly(b.shearForce, keepBond);
   keepOnly(b.twistingMoment, keepBond);

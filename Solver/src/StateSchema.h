@@ -157,10 +157,20 @@ void visitModel(IO& io, Model& m)
   } else {
     b.momentContribution.assign(nb, 1.0); // files before the factor: the full moments
   }
+  if (io.has("bonds/softening_ratio")) {
+    io.column("bonds/softening_ratio", b.softening, nb, "1", perBond);
+  } else {
+    b.softening.assign(nb, 0.0); // files before tension softening: brittle bonds
+  }
   io.column("bonds/normal_force", b.normalForce, nb, "N", perBond);
   io.column("bonds/shear_force", b.shearForce, nb, "N", perBond);
   io.column("bonds/twisting_moment", b.twistingMoment, nb, "N m", perBond);
   io.column("bonds/bending_moment", b.bendingMoment, nb, "N m", perBond);
+  if (io.has("bonds/damage")) {
+    io.column("bonds/damage", b.damage, nb, "1", perBond);
+  } else {
+    b.damage.assign(nb, 0.0);
+  }
   io.column("bonds/failure", b.failure, nb, "1", perBond);
   io.column("bonds/failure_time", b.failureTime, nb, "s", perBond);
   io.column("bonds/failure_position", b.failurePosition, nb, "m", perBond);

@@ -63,6 +63,38 @@ inline Model cementedMidCompression()
   return m;
 }
 
+/// The cemented specimen of cementedMidCompression with tension-softening bonds (Softening
+/// Ratio 2), stopped while at least 10 intact bonds are softening (0 < damage < 1).
+inline Model softeningMidCompression()
+{
+  Model m = testing::specimen(400, 0.016, 0.0008, 0.0012, 3);
+  testing::consolidate(m, 2e4);
+  CementParameters c = testing::testCement();
+  c.softeningRatio = 2.0;
+  cement(m, c);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.strainRate = 1.0;
+  s.maxStrain = 0.03;
+  s.sampleInterval = 100;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  const auto softening = [&m] {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+      n += !m.bonds.broken(k) && m.bonds.damage[k] > 0.0;
+    }
+    return n;
+  };
+  for (int k = 0; k < 400 && softening() < 10; ++k) {
+    sim.advance(250);
+  }
+  if (softening() < 10 || m.test.stage != TestStage::Shear) {
+    throw std::runtime_error("softeningMidCompression: no softening bonds before the end of the test");
+  }
+  return m;
+}
+
 /// A triaxial test on `m` at 100 kPa with the given confinement, past consolidation, in
 /// the middle of shear (between two samples); `name` names it in the error.
 inline Model shearing(Model m, Confinement confinement, const char* name)
@@ -168,6 +200,7 @@ inline std::string firstDifference(const Model& a, const Model& b)
   ROCKDEM_SAME(a.bonds.shearForce, b.bonds.shearForce, "bonds/shear_force");
   ROCKDEM_SAME(a.bonds.twistingMoment, b.bonds.twistingMoment, "bonds/twisting_moment");
   ROCKDEM_SAME(a.bonds.bendingMoment, b.bonds.bendingMoment, "bonds/bending_moment");
+  ROCKDEM_SAME(a.bonds.damage, b.bonds.damage, "bonds/damage");
   ROCKDEM_SAME(a.bonds.failure, b.bonds.failure, "bonds/failure");
   ROCKDEM_SAME(a.bonds.failureTime, b.bonds.failureTime, "bonds/failure_time");
   ROCKDEM_SAME(a.bonds.failurePosition, b.bonds.failurePosition, "bonds/failure_position");

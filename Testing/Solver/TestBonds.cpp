@@ -8,9 +8,11 @@
 // (tension, shear with the Mohr-Coulomb envelope, bending, twisting), rigid-body
 // invariance, the fate of a broken bond, and a cantilever against beam theory.
 #include "DynamicsFixtures.h"
+#include "StateFixtures.h"
 
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
+#include "dem/Errors.h"
 
 #include <gtest/gtest.h>
 
@@ -794,3 +796,179 @@ TEST(BondCantilever, TipDeflectionMatchesBeamTheory)
   EXPECT_LT(d.unbalancedForceRatio, 1e-3)
     << "the fixed support's reaction (the whole weight) counts as unbalanced force";
 }
+
+// ---------------------------------------------------------------------------------------
+// 6. Tension softening (Softening Ratio r > 0; Cement.md "Tension softening")
+//
+// Closed form for a bond pulled along its axis (delta: elongation, delta0 = sigma_c / kn
+// the elongation at the strength): F = kn A delta up to delta0, then F = sigma_c A (1 + r
+// - delta / delta0) / r down to zero at (1 + r) delta0, where the bond breaks in tension.
+// Unloading and reloading follow the secant to the origin, F = (1 - D) kn A delta, with the
+// damage D reached on the softening line.
+
+namespace {
+
+double softeningForce(double delta, double delta0, double sigmaC, double area, double r)
+{
+  if (delta <= delta0) {
+    return sigmaC / delta0 * area * delta;
+  }
+  return sigmaC * area * (1.0 + r - delta / delta0) / r;
+}
+
+void softeningPull(bool planar)
+{
+  const double Ebar = 1e9;
+  const double sigmaC = 1e6;
+  const double r = 2.5;
+  CementParameters cp = pairCement(Ebar, sigmaC, 1e9, 30.0);
+  cp.softeningRatio = r;
+  Model m = bondedPair(planar, cp);
+  ASSERT_EQ(m.bonds.softening[0], r);
+  const Section s = pairSection(planar);
+  const double kn = knOf(Ebar);
+  const int n0 = 400; // the strength is reached half way through step n0 + 1
+  const double delta0 = sigmaC / kn;
+  const double v = delta0 / ((n0 + 0.5) * Dt);
+  m.particles.velocity[1] = Vec3(v, 0, 0);
+  Simulation sim(m);
+  // (1 + r) delta0 is reached at step (1 + r)(n0 + 0.5) = 1401.75: the bond breaks in step 1402.
+  const int breakStep = 1402;
+  double largestError = 0.0;
+  for (int k = 1; k < breakStep; ++k) {
+    sim.advance(1);
+    ASSERT_FALSE(m.bonds.broken(0)) << "broke early, step " << k;
+    const double delta = elongation(m);
+    const double expected = softeningForce(delta, delta0, sigmaC, s.A, r);
+    const double error = std::abs(m.particles.force[0].x() - expected) / (sigmaC * s.A);
+    largestError = std::max(largestError, error);
+    ASSERT_LT(error, 1e-6) << "step " << k << ", elongation / delta0 " << delta / delta0;
+    ASSERT_LT((m.particles.force[1] + m.particles.force[0]).norm(), 1e-9 * sigmaC * s.A);
+    EXPECT_EQ(m.bonds.damage[0] > 0.0, delta > delta0) << "step " << k;
+  }
+  EXPECT_GT(m.bonds.damage[0], 0.999);
+  sim.advance(1);
+  ASSERT_TRUE(m.bonds.broken(0));
+  EXPECT_EQ(m.bonds.failure[0], mode(BondFailure::Tension));
+  EXPECT_EQ(m.particles.force[0].norm(), 0.0);
+  std::printf("tension softening (%s, r = %g): force within %.2e sigma_c A of the closed form over %d steps, "
+              "broken at elongation %.6f delta0 (closed form %.6f)\n", planar ? "discs" : "spheres", r,
+              largestError, breakStep, elongation(m) / delta0, 1.0 + r);
+}
+
+} // namespace
+
+TEST(BondSoftening, ForceFollowsTheLinearSofteningLineToFailureSpheres) { softeningPull(false); }
+TEST(BondSoftening, ForceFollowsTheLinearSofteningLineToFailureDiscs) { softeningPull(true); }
+
+TEST(BondSoftening, UnloadsAndReloadsAlongTheSecantToTheOrigin)
+{
+  const double Ebar = 1e9;
+  const double sigmaC = 1e6;
+  const double r = 2.5;
+  CementParameters cp = pairCement(Ebar, sigmaC, 1e9, 30.0);
+  cp.softeningRatio = r;
+  Model m = bondedPair(false, cp);
+  const Section s = pairSection(false);
+  const double kn = knOf(Ebar);
+  const double delta0 = sigmaC / kn;
+  const int n0 = 400;
+  const double v = delta0 / (n0 * Dt);
+  m.particles.velocity[1] = Vec3(v, 0, 0);
+  Simulation sim(m);
+  sim.advance(2 * n0); // to 2 delta0 on the softening line
+  const double x = elongation(m) / delta0;
+  ASSERT_NEAR(x, 2.0, 1e-9);
+  const double D = m.bonds.damage[0];
+  EXPECT_NEAR(D, 1.0 - (1.0 + r - x) / (r * x), 1e-9); // (1 - D) x = (1 + r - x) / r: 0.7
+  // Unload to a quarter of delta0, reload to just under 2 delta0: the secant, the damage
+  // unchanged.
+  for (double direction : { -1.0, 1.0 }) {
+    m.particles.velocity[1] = Vec3(direction * v, 0, 0);
+    const int steps = direction < 0.0 ? 7 * n0 / 4 : 7 * n0 / 4 - 4;
+    for (int k = 0; k < steps; ++k) {
+      sim.advance(1);
+      const double delta = elongation(m);
+      ASSERT_NEAR(m.particles.force[0].x(), (1.0 - D) * kn * s.A * delta, 1e-6 * sigmaC * s.A) << "step " << k;
+      ASSERT_EQ(m.bonds.damage[0], D) << "the damage does not heal or grow below its envelope";
+    }
+  }
+  ASSERT_NEAR(elongation(m) / delta0, 2.0 - 4.0 / n0, 1e-9);
+  // Past 2 delta0 the softening line again.
+  sim.advance(n0 / 2 + 4);
+  const double delta = elongation(m);
+  EXPECT_NEAR(m.particles.force[0].x(), softeningForce(delta, delta0, sigmaC, s.A, r), 1e-6 * sigmaC * s.A);
+  EXPECT_GT(m.bonds.damage[0], D);
+  EXPECT_FALSE(m.bonds.broken(0));
+}
+
+TEST(BondSoftening, RatioZeroIsTheBrittleLaw)
+{
+  const BondSection s = bondSection(0.01, false, 0.0);
+  double damage = 0.0;
+  for (double sigma : { 0.5e6, 0.999e6, 1e6, 1.5e6 }) {
+    for (double tau : { 0.0, 3e6, 5e6 }) {
+      const BondStresses st = bondStresses(s, 0.01, sigma * s.area, Vec3(tau * s.area, 0, 0), 0.0, Vec3::Zero());
+      EXPECT_EQ(softenedBondFailure(st, 1e6, 4e6, 0.5, 0.0, damage), bondFailure(st, 1e6, 4e6, 0.5));
+      EXPECT_EQ(damage, 0.0);
+    }
+  }
+  // r > 0: no tension failure below (1 + r) sigma_c, the damage of the closed form.
+  const BondStresses at2 = bondStresses(s, 0.01, 2e6 * s.area, Vec3::Zero(), 0.0, Vec3::Zero());
+  EXPECT_EQ(softenedBondFailure(at2, 1e6, 4e6, 0.5, 2.5, damage), BondFailure::Intact);
+  EXPECT_DOUBLE_EQ(damage, 0.7);
+  EXPECT_EQ(softeningDamage(0.9, 2.5), 0.0);
+  EXPECT_EQ(softeningDamage(3.5, 2.5), 1.0);
+  const BondStresses at36 = bondStresses(s, 0.01, 3.6e6 * s.area, Vec3::Zero(), 0.0, Vec3::Zero());
+  EXPECT_EQ(softenedBondFailure(at36, 1e6, 4e6, 0.5, 2.5, damage), BondFailure::Tension);
+  // Bending enters through the peripheral stress as in the brittle law (beta = 1).
+  const BondStresses bent = bondStresses(s, 0.01, 0.0, Vec3::Zero(), 0.0, Vec3(0, 2e6 * s.inertia / 0.01, 0));
+  double bentDamage = 0.0;
+  EXPECT_EQ(softenedBondFailure(bent, 1e6, 4e6, 0.5, 2.5, bentDamage), BondFailure::Intact);
+  EXPECT_DOUBLE_EQ(bentDamage, 0.7);
+}
+
+TEST(BondSoftening, SameBitsOnOneAndTwoThreads)
+{
+  const Model start = statetest::softeningMidCompression();
+  Model a = start;
+  Model b = start;
+  a.solver.threads = 1;
+  b.solver.threads = 2;
+  a.solver.parallelThreshold = b.solver.parallelThreshold = 0;
+  {
+    Simulation sa(a);
+    sa.advance(1500);
+  }
+  {
+    Simulation sb(b);
+    sb.advance(1500);
+  }
+  std::size_t softening = 0;
+  for (std::size_t k = 0; k < a.bonds.size(); ++k) {
+    softening += !a.bonds.broken(k) && a.bonds.damage[k] > 0.0;
+  }
+  EXPECT_GE(softening, 10u);
+  EXPECT_EQ(statetest::firstDifference(a, b), "");
+}
+
+TEST(BondSoftening, RatioOutsideItsRangeIsAnErrorNamingIt)
+{
+  for (double bad : { -0.5, 100.5, std::nan("") }) {
+    CementParameters p;
+    p.softeningRatio = bad;
+    try {
+      validate(p);
+      ADD_FAILURE() << "Softening Ratio = " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Softening Ratio"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("100"), std::string::npos) << "names the range: " << e.what();
+    }
+  }
+  for (double good : { 0.0, 2.0, 100.0 }) {
+    CementParameters p;
+    p.softeningRatio = good;
+    EXPECT_NO_THROW(validate(p));
+  }
+}
+

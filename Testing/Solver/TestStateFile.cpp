@@ -107,6 +107,8 @@ Model everyFieldModel()
   m.nextId += 17;
   m.random.next();
   m.test.settings.platenFriction = 0.3; // a setting (not run with: the fixture's physics stays)
+  m.bonds.softening[1] = 2.5;            // bond state fields (not run with)
+  m.bonds.damage[1] = 0.1 + 0.2;
   return m;
 }
 
@@ -120,6 +122,7 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_TRUE(sameBits(a.bonds.cohesion, b.bonds.cohesion));
   EXPECT_TRUE(sameBits(a.bonds.frictionAngle, b.bonds.frictionAngle));
   EXPECT_TRUE(sameBits(a.bonds.momentContribution, b.bonds.momentContribution));
+  EXPECT_TRUE(sameBits(a.bonds.softening, b.bonds.softening));
   EXPECT_EQ(std::memcmp(a.domain.origin.data(), b.domain.origin.data(), 24), 0);
   EXPECT_EQ(std::memcmp(a.domain.size.data(), b.domain.size.data(), 24), 0);
   EXPECT_EQ(a.domain.periodic, b.domain.periodic);
@@ -239,11 +242,11 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(SolverSettings), 64u) << "SolverSettings" << fix;
   EXPECT_EQ(sizeof(Wall), 80u) << "Wall" << fix;
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
-  EXPECT_EQ(sizeof(Bonds), 17 * sizeof(std::vector<double>)) << "Bonds" << fix;
+  EXPECT_EQ(sizeof(Bonds), 19 * sizeof(std::vector<double>)) << "Bonds" << fix;
   EXPECT_EQ(sizeof(LoadTestSettings), 72u) << "LoadTestSettings" << fix;
   EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1240u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1288u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
@@ -392,6 +395,35 @@ TEST(StateFile, BondsWithoutTheMomentContributionReadAsFullMoments)
   const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "bonds/moment_contribution", H5P_DEFAULT); });
   EXPECT_EQ(readStateFromMemory(older.data(), older.size()).bonds.momentContribution,
             std::vector<double>(m.bonds.size(), 1.0));
+}
+
+TEST(StateFile, SofteningBondsMidSofteningResumeExactly)
+{
+  TempDir dir;
+  const Model start = statetest::softeningMidCompression();
+  expectExactResume(start, 1000, dir, "softening");
+}
+
+TEST(StateFile, BondsWithoutSofteningReadAsBrittleAndUndamaged)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  CementParameters c = dem::testing::testCement();
+  c.softeningRatio = 3.0;
+  cement(m, c);
+  ASSERT_GT(m.bonds.size(), 0u);
+  m.bonds.damage[0] = 0.5;
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  const Model back = readStateFromMemory(image.data(), image.size());
+  EXPECT_EQ(back.bonds.softening, std::vector<double>(m.bonds.size(), 3.0));
+  EXPECT_EQ(back.bonds.damage, m.bonds.damage);
+  // A file written before tension softening existed: brittle, undamaged bonds.
+  const auto older = editImage(image, [&](hid_t f) {
+    H5Ldelete(f, "bonds/softening_ratio", H5P_DEFAULT);
+    H5Ldelete(f, "bonds/damage", H5P_DEFAULT);
+  });
+  const Model old = readStateFromMemory(older.data(), older.size());
+  EXPECT_EQ(old.bonds.softening, std::vector<double>(m.bonds.size(), 0.0));
+  EXPECT_EQ(old.bonds.damage, std::vector<double>(m.bonds.size(), 0.0));
 }
 
 TEST(StateFile, InconsistentArraySizesAreRejected)

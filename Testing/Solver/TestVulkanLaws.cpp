@@ -118,6 +118,10 @@ std::vector<double> cpuResults(const Case& c)
   // gives the device std::tan(phi), as the Vulkan backend does.
   out[OUT_FAILURE] = static_cast<double>(dem::bondFailure(stresses, in[IN_BOND_SIGMA], in[IN_BOND_COHESION],
                                                           in[IN_BOND_PHI]));
+  double damage = in[IN_BOND_DAMAGE];
+  out[OUT_SOFTENED_FAILURE] = static_cast<double>(dem::softenedBondFailure(
+    stresses, in[IN_BOND_SIGMA], in[IN_BOND_COHESION], in[IN_BOND_PHI], in[IN_BOND_SOFTENING], damage));
+  out[OUT_DAMAGE] = damage;
   out[OUT_SERVO] = dem::servoWallVelocity(in[IN_SERVO_ELASTIC], in[IN_SERVO_STIFFNESS], in[IN_SERVO_AREA],
                                           in[IN_SERVO_TARGET], in[IN_SERVO_ALPHA], in[IN_DT],
                                           in[IN_SERVO_MAX_SPEED], static_cast<int>(in[IN_SERVO_SIDE]));
@@ -189,6 +193,8 @@ std::vector<Case> makeCases()
     in[IN_SERVO_ALPHA] = u(rng);
     in[IN_SERVO_MAX_SPEED] = logUniform(1e-6, 1.0);
     in[IN_SERVO_SIDE] = k % 2;
+    in[IN_BOND_SOFTENING] = k % 3 == 0 ? 0.0 : logUniform(0.1, 50.0); // brittle and softening bonds
+    in[IN_BOND_DAMAGE] = k % 4 == 0 ? 0.0 : 0.9 * u(rng);
     cases.push_back(c);
   }
   // A bond exactly at its tensile strength, and exactly at its shear strength: the C++
@@ -203,6 +209,18 @@ std::vector<Case> makeCases()
       c.in[IN_BOND_COHESION] = r[OUT_STRESSES + 1] - r[OUT_STRESSES + 2] * c.in[IN_BOND_TAN_PHI];
     }
     cases.push_back(c);
+  }
+  // Bonds on their softening line: the tensile strength set so that sigma_max is half way
+  // along it (damage grows or stays, depending on the damage before).
+  for (int k = 200; k < 400; ++k) {
+    Case c = cases[k];
+    const std::vector<double> r = cpuResults(c);
+    if (r[OUT_STRESSES] > 0.0) {
+      c.in[IN_BOND_SOFTENING] = 2.0;
+      c.in[IN_BOND_SIGMA] = r[OUT_STRESSES] / 2.0;
+      c.in[IN_BOND_COHESION] = 1e30; // no shear failure
+      cases.push_back(c);
+    }
   }
   // Spring parallel to the normal (its projection vanishes), and along the axes.
   for (int k = 0; k < 3; ++k) {
@@ -250,7 +268,7 @@ TEST(VulkanLaws, SameBitsAsTheCppLawsOnTheDevice)
   });
   const double* gpu = static_cast<const double*>(staging.mapped);
   std::size_t mismatches = 0;
-  std::size_t grossSliding = 0, atStrength = 0, failed = 0;
+  std::size_t grossSliding = 0, atStrength = 0, failed = 0, softening = 0;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const std::vector<double> cpu = cpuResults(cases[c]);
     for (unsigned k = 0; k < PARITY_OUT; ++k) {
@@ -272,11 +290,15 @@ TEST(VulkanLaws, SameBitsAsTheCppLawsOnTheDevice)
     if (cpu[OUT_STRESSES] == cases[c].in[IN_BOND_SIGMA]) {
       ++atStrength;
     }
+    if (cpu[OUT_DAMAGE] > cases[c].in[IN_BOND_DAMAGE] && cpu[OUT_SOFTENED_FAILURE] == 0.0) {
+      ++softening;
+    }
   }
   EXPECT_EQ(mismatches, 0u) << "of " << cases.size() * PARITY_OUT << " results";
   EXPECT_GT(grossSliding, 1000u);
   EXPECT_GE(atStrength, 100u);
   EXPECT_GT(failed, 100u);
+  EXPECT_GT(softening, 50u) << "bonds on the softening line whose damage grew";
   device->destroy(input);
   device->destroy(output);
   device->destroy(staging);

@@ -170,6 +170,28 @@ TEST(VulkanRuns, MomentContributionBelowOneUnderUnconfinedCompressionGivesTheCpu
   EXPECT_NE(countBonds(full.bonds).broken, countBonds(cpu.bonds).broken) << "beta changes which bonds break";
 }
 
+TEST(VulkanRuns, SofteningBondsUnderUnconfinedCompressionGiveTheCpuBits)
+{
+  // Tension softening (Softening Ratio, Cement.md), mirrored in bond_laws.glsl and
+  // bond_forces.comp: ratio 2 on most bonds, 0 (brittle) on every third.
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  Model m = cementedSpecimen(600, 0.021, 2);
+  ASSERT_GT(m.bonds.size(), 500u);
+  for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+    m.bonds.softening[k] = k % 3 == 2 ? 0.0 : 2.0;
+  }
+  startLoadTest(m, compression(25.0, 50));
+  Model cpu, gpu;
+  const std::string difference = cpuGpuDifference(m, { 700, 500 }, &cpu, &gpu);
+  EXPECT_EQ(difference, "") << "first difference";
+  std::size_t softening = 0;
+  for (std::size_t k = 0; k < cpu.bonds.size(); ++k) {
+    softening += !cpu.bonds.broken(k) && cpu.bonds.damage[k] > 0.0;
+  }
+  EXPECT_GT(softening, 0u) << "bonds are softening at the end";
+  EXPECT_GT(countBonds(cpu.bonds).broken, 0u) << "the test breaks bonds";
+}
+
 TEST(VulkanRuns, PlatenFrictionUnderUnconfinedCompressionGivesTheCpuBits)
 {
   // Issue 12's Platen Friction (LoadTest.md): the walls on the test axis take it, in

@@ -1,5 +1,6 @@
 // RockDEM shaders: the parallel bond (Potyondy & Cundall 2004; PHYSICS.md section 3), the
-// GLSL mirror of dem/Bonds.h (bondSection, bondStresses, bondFailure) and dem/BondLaw.h
+// GLSL mirror of dem/Bonds.h (bondSection, bondStresses, bondFailure, softeningDamage,
+// softenedBondFailure) and dem/BondLaw.h
 // (incrementBond). Same operations in the same order as the C++ (VulkanLaws.SameBitsAsTheCppLawsOnTheDevice).
 // SI units: m, N, N m, Pa.
 #ifndef ROCKDEM_BOND_LAWS_GLSL
@@ -56,6 +57,12 @@ BondStresses bondStresses(BondSection s, double bondRadius, double normalForce, 
   return o;
 }
 
+/// dem::failsInShear (Bonds.cpp), with tan(friction angle) given.
+bool failsInShear(BondStresses stresses, double cohesion, double tanFrictionAngle)
+{
+  return stresses.tauMax >= cohesion + stresses.compressive * tanFrictionAngle;
+}
+
 /// dem::bondFailure, with tan(friction angle) given (the host computes std::tan once per
 /// bond: GLSL has no double-precision tangent).
 uint bondFailure(BondStresses stresses, double tensileStrength, double cohesion, double tanFrictionAngle)
@@ -63,7 +70,39 @@ uint bondFailure(BondStresses stresses, double tensileStrength, double cohesion,
   if (stresses.sigmaMax >= tensileStrength) {
     return BOND_TENSION;
   }
-  if (stresses.tauMax >= cohesion + stresses.compressive * tanFrictionAngle) {
+  if (failsInShear(stresses, cohesion, tanFrictionAngle)) {
+    return BOND_SHEAR;
+  }
+  return BOND_INTACT;
+}
+
+/// dem::softeningDamage: tension-softening damage at an elastic peripheral stress of
+/// stressRatio x the tensile strength, Softening Ratio r > 0.
+double softeningDamage(double stressRatio, double softeningRatio)
+{
+  if (!(stressRatio > 1.0LF)) {
+    return 0.0LF;
+  }
+  const double r = softeningRatio;
+  if (stressRatio >= 1.0LF + r) {
+    return 1.0LF;
+  }
+  return 1.0LF - (1.0LF + r - stressRatio) / (r * stressRatio);
+}
+
+/// dem::softenedBondFailure: the failure rule with tension softening (r = 0: bondFailure).
+uint softenedBondFailure(BondStresses elastic, double tensileStrength, double cohesion, double tanFrictionAngle,
+                         double softeningRatio, inout double damage)
+{
+  if (!(softeningRatio > 0.0LF)) {
+    return bondFailure(elastic, tensileStrength, cohesion, tanFrictionAngle);
+  }
+  const double ratio = elastic.sigmaMax / tensileStrength;
+  if (ratio >= 1.0LF + softeningRatio) {
+    return BOND_TENSION;
+  }
+  damage = max(damage, softeningDamage(ratio, softeningRatio));
+  if (failsInShear(elastic, cohesion, tanFrictionAngle)) {
     return BOND_SHEAR;
   }
   return BOND_INTACT;

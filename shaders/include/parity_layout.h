@@ -51,6 +51,8 @@
 #define IN_SERVO_SIDE 59u
 #define IN_BOND_PHI 60u     // the C++ side: friction angle (rad); IN_BOND_TAN_PHI = std::tan of it
 #define IN_BOND_BETA 61u    // Moment Contribution factor
+#define IN_BOND_SOFTENING 62u // Softening Ratio
+#define IN_BOND_DAMAGE 63u    // tension-softening damage before the step
 
 // Results
 #define OUT_PAIR 0u            // 6: PairProperties
@@ -70,5 +72,7 @@
 #define OUT_STRESSES 50u       // 3
 #define OUT_FAILURE 53u
 #define OUT_SERVO 54u
+#define OUT_SOFTENED_FAILURE 55u // softenedBondFailure
+#define OUT_DAMAGE 56u           // the damage after it
 
 #endif

@@ -1,6 +1,7 @@
 #version 460
 // RockDEM step: each intact bond once (CpuBackend::computeBondForces): incremental force
-// and moments (dem::incrementBond), the failure test (dem::bondStresses, dem::bondFailure),
+// and moments (dem::incrementBond), the failure test (dem::bondStresses,
+// dem::softenedBondFailure, with the tension-softening damage),
 // and a bond that fails is broken for good with its time, place and orientation. One
 // invocation per bond.
 #include "geometry.glsl"
@@ -43,8 +44,10 @@ void main()
   const BondStresses stresses =
     bondStresses(section, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment,
                  p.bondMomentContribution.v[k]);
-  const uint failure =
-    bondFailure(stresses, p.bondTensileStrength.v[k], p.bondCohesion.v[k], p.bondTanFriction.v[k]);
+  double damage = p.bondDamage.v[k];
+  const uint failure = softenedBondFailure(stresses, p.bondTensileStrength.v[k], p.bondCohesion.v[k],
+                                           p.bondTanFriction.v[k], p.bondSoftening.v[k], damage);
+  p.bondDamage.v[k] = damage;
   if (failure != BOND_INTACT) {
     // dem::Bonds::markBroken
     p.bondFailure.v[k] = failure;
@@ -65,7 +68,16 @@ void main()
   p.bondTwistingMoment.v[k] = twistingMoment;
   store3(p.bondBendingMoment, k, bendingMoment);
   const dvec3 twist = twistingMoment * normal;
-  store3(p.bondForce, k, normalForce * normal + shearForce);
-  store3(p.bondTorqueI, k, armI * cross3(normal, shearForce) + twist + bendingMoment);
-  store3(p.bondTorqueJ, k, armJ * cross3(normal, shearForce) - twist - bendingMoment);
+  dvec3 force = normalForce * normal + shearForce;
+  dvec3 torqueI = armI * cross3(normal, shearForce) + twist + bendingMoment;
+  dvec3 torqueJ = armJ * cross3(normal, shearForce) - twist - bendingMoment;
+  if (damage > 0.0LF) { // tension softening: the bond applies (1 - D) of its elastic state
+    const double share = 1.0LF - damage;
+    force *= share;
+    torqueI *= share;
+    torqueJ *= share;
+  }
+  store3(p.bondForce, k, force);
+  store3(p.bondTorqueI, k, torqueI);
+  store3(p.bondTorqueJ, k, torqueJ);
 }

@@ -118,6 +118,10 @@ void main()
   out_(c, OUT_STRESSES + 2u, stresses.compressive);
   out_(c, OUT_FAILURE, double(bondFailure(stresses, in_(c, IN_BOND_SIGMA), in_(c, IN_BOND_COHESION),
                                           in_(c, IN_BOND_TAN_PHI))));
+  double damage = in_(c, IN_BOND_DAMAGE);
+  out_(c, OUT_SOFTENED_FAILURE, double(softenedBondFailure(stresses, in_(c, IN_BOND_SIGMA), in_(c, IN_BOND_COHESION),
+                                                           in_(c, IN_BOND_TAN_PHI), in_(c, IN_BOND_SOFTENING), damage)));
+  out_(c, OUT_DAMAGE, damage);
   out_(c, OUT_SERVO, servoWallVelocity(in_(c, IN_SERVO_ELASTIC), in_(c, IN_SERVO_STIFFNESS),
                                        in_(c, IN_SERVO_AREA), in_(c, IN_SERVO_TARGET), in_(c, IN_SERVO_ALPHA),
                                        in_(c, IN_DT), in_(c, IN_SERVO_MAX_SPEED), int(in_(c, IN_SERVO_SIDE))));

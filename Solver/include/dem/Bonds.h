@@ -46,11 +46,19 @@ struct Bonds {
   /// Moment contribution factor beta in [0, 1]: the share of the bond's moments in its
   /// peripheral stresses (PFC's moment-contribution factor; 1 = Potyondy & Cundall 2004).
   std::vector<double> momentContribution;
+  /// Softening Ratio r >= 0 (tension softening, dem::softenedBondFailure): after its
+  /// tensile strength the bond's stress falls linearly to zero over r times the stretch
+  /// that reached the strength; 0 = brittle (Potyondy & Cundall 2004).
+  std::vector<double> softening;
   // State (forces and moments on particle A; B gets the opposite).
   std::vector<double> normalForce;     ///< N, positive in tension
   std::vector<Vec3> shearForce;        ///< N, in the bond plane
   std::vector<double> twistingMoment;  ///< N m, about the bond axis (0 in 2D)
   std::vector<Vec3> bendingMoment;     ///< N m, in the bond plane
+  /// Tension-softening damage D in [0, 1) of an intact bond (0 unless softening > 0): the
+  /// forces and moments above are the undamaged (elastic) ones, the bond applies (1 - D)
+  /// times them. D only grows; a broken bond keeps its last value.
+  std::vector<double> damage;
   // Failure record.
   std::vector<std::uint8_t> failure;   ///< BondFailure
   std::vector<double> failureTime;     ///< s (model time), when broken
@@ -60,10 +68,12 @@ struct Bonds {
   std::size_t size() const { return idA.size(); }
   bool broken(std::size_t b) const { return failure[b] != static_cast<std::uint8_t>(BondFailure::Intact); }
   void clear();
-  /// Appends an intact bond with zero force; strengths, stiffness and moment
-  /// contribution as given.
+  /// Appends an intact, undamaged bond with zero force; strengths, stiffness, moment
+  /// contribution and softening ratio as given.
   void append(std::int64_t a, std::int64_t b, double bondRadius, double kn, double ks,
-              double sigmaC, double c, double phi, double beta = 1.0);
+              double sigmaC, double c, double phi, double beta = 1.0, double softeningRatio = 0.0);
+  /// The share of its elastic forces and moments that bond k applies: 1 - damage.
+  double intactShare(std::size_t k) const { return 1.0 - damage[k]; }
   /// Breaks bond k for good: records how, when (s), where (m, the contact point on the
   /// line of centres) and its orientation (unit normal from A to B), and zeroes its force
   /// and moments.
@@ -107,5 +117,24 @@ BondStresses bondStresses(const BondSection& s, double bondRadius, double normal
 /// else shear if tau_max >= c + sigma tan(phi).
 BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
                         double frictionAngle);
+
+/// Largest Softening Ratio (the softening stretch is at most this many times the elastic
+/// stretch at the strength).
+constexpr double kMaxSofteningRatio = 100.0;
+
+/// Tension-softening damage after an elastic peripheral stress of `stressRatio` times the
+/// tensile strength, for Softening Ratio r > 0: 0 up to 1, then the damage D with
+/// (1 - D) x = 1 - (x - 1) / r, so that the applied peripheral stress falls linearly from
+/// the strength at x = 1 to zero at x = 1 + r (where D reaches 1).
+double softeningDamage(double stressRatio, double softeningRatio);
+
+/// The bond law's failure rule with tension softening. `elastic`: the peripheral stresses
+/// of the undamaged forces and moments. Softening Ratio 0: exactly dem::bondFailure
+/// (`damage` untouched). r > 0: tension failure when sigma_max >= (1 + r) sigma_c;
+/// below it `damage` becomes max(damage, softeningDamage(sigma_max / sigma_c, r)); shear
+/// failure as in dem::bondFailure on the undamaged stresses (the damaged bond's shear
+/// stress and its shear strength both scale with 1 - D).
+BondFailure softenedBondFailure(const BondStresses& elastic, double tensileStrength, double cohesion,
+                                double frictionAngle, double softeningRatio, double& damage);
 
 } // namespace dem

@@ -20,6 +20,7 @@ struct CementParameters {
   double cohesion = 20.0e6;          ///< Pa, mean c, > 0
   double frictionAngle = 30.0;       ///< degrees, phi in [0, 90)
   double momentContribution = 1.0;   ///< beta in [0, 1]: share of the moments in the peripheral stresses
+  double softeningRatio = 0.0;       ///< tension softening, [0, kMaxSofteningRatio]: softening stretch / stretch at the strength; 0 = brittle
   double strengthScatter = 0.0;      ///< coefficient of variation of the strengths, [0, 1]
   std::uint64_t randomSeed = 1;      ///< seed of the strength draw
 };

@@ -743,8 +743,8 @@ void CpuBackend::computeBondForces(bool incrementState)
                     b.twistingMoment[k], b.bendingMoment[k]);
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
         b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
-      const BondFailure failure =
-        bondFailure(stresses, b.tensileStrength[k], b.cohesion[k], b.frictionAngle[k]);
+      const BondFailure failure = softenedBondFailure(stresses, b.tensileStrength[k], b.cohesion[k],
+                                                      b.frictionAngle[k], b.softening[k], b.damage[k]);
       if (failure != BondFailure::Intact) {
         // Broken for good: record how, when, where and how it was oriented.
         b.markBroken(k, failure, endTime, p.position[i] + armI * normal, normal);
@@ -758,6 +758,12 @@ void CpuBackend::computeBondForces(bool incrementState)
     im.bondForce[k] = b.normalForce[k] * normal + b.shearForce[k];
     im.bondTorqueI[k] = armI * normal.cross(b.shearForce[k]) + twist + b.bendingMoment[k];
     im.bondTorqueJ[k] = armJ * normal.cross(b.shearForce[k]) - twist - b.bendingMoment[k];
+    if (b.damage[k] > 0.0) { // tension softening: the bond applies (1 - D) of its elastic state
+      const double share = b.intactShare(k);
+      im.bondForce[k] *= share;
+      im.bondTorqueI[k] *= share;
+      im.bondTorqueJ[k] *= share;
+    }
   }
 }
 

@@ -73,7 +73,8 @@ const ArraySpec kArrays[] = {
   { "bondI", Count::Bonds, 4 }, { "bondJ", Count::Bonds, 4 }, { "bondRadius", Count::Bonds, 8 },
   { "bondKn", Count::Bonds, 8 }, { "bondKs", Count::Bonds, 8 }, { "bondTensileStrength", Count::Bonds, 8 },
   { "bondCohesion", Count::Bonds, 8 }, { "bondTanFriction", Count::Bonds, 8 },
-  { "bondMomentContribution", Count::Bonds, 8 },
+  { "bondMomentContribution", Count::Bonds, 8 }, { "bondSoftening", Count::Bonds, 8 },
+  { "bondDamage", Count::Bonds, 8 },
   { "bondNormalForce", Count::Bonds, 8 }, { "bondShearForce", Count::Bonds3, 8 },
   { "bondTwistingMoment", Count::Bonds, 8 }, { "bondBendingMoment", Count::Bonds3, 8 },
   { "bondFailure", Count::Bonds, 4 }, { "bondFailureTime", Count::Bonds, 8 },
@@ -642,6 +643,7 @@ std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
   add(b.shearForce, "bondShearForce", bonds_);
   add(b.twistingMoment, "bondTwistingMoment", bonds_);
   add(b.bendingMoment, "bondBendingMoment", bonds_);
+  add(b.damage, "bondDamage", bonds_);
   add(im.failure, "bondFailure", bonds_);
   add(b.failureTime, "bondFailureTime", bonds_);
   add(b.failurePosition, "bondFailurePosition", bonds_);
@@ -738,6 +740,7 @@ void VulkanBackend::upload()
   add(b.cohesion, "bondCohesion", bonds_);
   add(tanFriction, "bondTanFriction", bonds_);
   add(b.momentContribution, "bondMomentContribution", bonds_);
+  add(b.softening, "bondSoftening", bonds_);
   add(bondAdjacencyStart, "bondAdjacencyStart", bonds_ ? n + 1 : 0);
   add(bondAdjacency, "bondAdjacency", bondAdjacency.size());
   // Control: the list sizes, and the pair kernel's dispatch.
