@@ -15,6 +15,7 @@
 //     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
+#include "dem/Bonds.h"
 #include "dem/Cement.h"
 #include "dem/Fractures.h"
 #include "dem/LoadTest.h"
@@ -58,6 +59,7 @@ struct Options {
   double cohesion = 4e6;        // Pa
   double bondFriction = 30.0;   // degrees
   double beta = 1.0;            // moment contribution factor
+  double softening = 0.0;       // Softening Ratio (tension softening; 0 = brittle)
   double scatter = 0.2;
   double strainPerStep = 2e-7;  // platen strain per step (sets the strain rate)
   double safety = 0.3;
@@ -83,7 +85,7 @@ Options parse(int argc, char** argv)
     { "--friction", &o.friction }, { "--rolling", &o.rolling }, { "--range", &o.range },
     { "--gap", &o.gap }, { "--multiplier", &o.multiplier }, { "--ratio", &o.ratio },
     { "--tensile", &o.tensile }, { "--cohesion", &o.cohesion }, { "--bond-friction", &o.bondFriction },
-    { "--moment-contribution", &o.beta },
+    { "--moment-contribution", &o.beta }, { "--softening", &o.softening },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
     { "--platen-friction", &o.platenFriction } };
@@ -186,6 +188,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   cp.cohesion = o.cohesion;
   cp.frictionAngle = o.bondFriction;
   cp.momentContribution = o.beta;
+  cp.softeningRatio = o.softening;
   cp.strengthScatter = o.scatter;
   cp.randomSeed = o.seed;
   cemented = cement(m, cp);
@@ -224,6 +227,7 @@ struct TestResult {
   double strainAt70 = 0.0;
   std::size_t brokenAtPeak = 0; // broken bonds at the sample of the peak stress
   std::string damage;           // damageBreakdown at the end
+  std::string earlyBreaks;      // failureCauses: what broke the first 10 % of the breaks at the peak
   bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
 };
 
@@ -377,6 +381,85 @@ std::string randomDamageControl(Model m)
   return line;
 }
 
+/// What broke the bonds, in the order they broke (the cause of the pre-peak cracking,
+/// Rock.md "Localisation"). At every sample the stretch term Fn / A and the bending term
+/// beta |Mb| Rb / I of each intact bond's peripheral tensile stress are kept; a bond found
+/// broken at the next sample is recorded with the terms it had at the last one (at most
+/// one sample interval earlier).
+struct BreakRecord {
+  std::uint8_t failure = 0;
+  double stretch = 0.0; // Pa
+  double bending = 0.0; // Pa
+  bool isLong = false;  // a gap at cementing
+};
+
+class BreakTracker {
+public:
+  explicit BreakTracker(const Model& m)
+    : stretch_(m.bonds.size(), 0.0), bending_(m.bonds.size(), 0.0), seen_(m.bonds.size(), 0), long_(m.bonds.size(), 0)
+  {
+    std::unordered_map<std::int64_t, std::size_t> slot;
+    for (std::size_t i = 0; i < m.particles.size(); ++i) {
+      slot[m.particles.id[i]] = i;
+    }
+    for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+      const std::size_t i = slot.at(m.bonds.idA[k]);
+      const std::size_t j = slot.at(m.bonds.idB[k]);
+      const double gap = minimumImage(m.domain, m.particles.position[i], m.particles.position[j]).norm() -
+        m.particles.radius[i] - m.particles.radius[j];
+      long_[k] = gap > 0.0;
+      seen_[k] = m.bonds.broken(k);
+    }
+  }
+  void sample(const Model& m)
+  {
+    const Bonds& b = m.bonds;
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      if (b.broken(k)) {
+        if (!seen_[k]) {
+          seen_[k] = 1;
+          records.push_back({ b.failure[k], stretch_[k], bending_[k], long_[k] != 0 });
+        }
+        continue;
+      }
+      const BondSection s = bondSection(b.radius[k], m.domain.section2D, m.domain.slabThickness());
+      stretch_[k] = b.normalForce[k] / s.area;
+      bending_[k] = b.momentContribution[k] * b.bendingMoment[k].norm() * b.radius[k] / s.inertia;
+    }
+  }
+  /// The first `count` breaks: how many in tension, how many of those with the bending
+  /// term above the stretch term, the mean bending share of the peripheral stress, long bonds.
+  std::string summary(std::size_t count) const
+  {
+    count = std::min(count, records.size());
+    std::size_t tension = 0, bendingLed = 0, longBonds = 0;
+    double share = 0.0;
+    for (std::size_t n = 0; n < count; ++n) {
+      const BreakRecord& r = records[n];
+      longBonds += r.isLong;
+      if (r.failure == static_cast<std::uint8_t>(BondFailure::Tension)) {
+        ++tension;
+        bendingLed += r.bending > r.stretch;
+        const double total = std::max(r.stretch, 0.0) + r.bending;
+        share += total > 0.0 ? r.bending / total : 0.0;
+      }
+    }
+    const auto pct = [](std::size_t a, std::size_t n) { return n ? 100.0 * static_cast<double>(a) / n : 0.0; };
+    char line[400];
+    std::snprintf(line, sizeof line,
+      "first %zu breaks: %.1f %% in tension, of them %.1f %% with bending above stretch (mean bending share of the "
+      "tensile stress %.1f %%); %.1f %% long bonds",
+      count, pct(tension, count), pct(bendingLed, tension), tension ? 100.0 * share / tension : 0.0,
+      pct(longBonds, count));
+    return line;
+  }
+  std::vector<BreakRecord> records;
+
+private:
+  std::vector<double> stretch_, bending_;
+  std::vector<std::uint8_t> seen_, long_;
+};
+
 /// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
 /// tension), the shear stage's max strain, or the test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
@@ -400,10 +483,14 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
   Simulation run(m);
   std::vector<double> strain, stress, lateral;
+  BreakTracker breaks(m);
   bool fallen = false;
   while (m.test.stage != TestStage::Done && !fallen) {
     run.advance(s.sampleInterval);
     r.steps += s.sampleInterval;
+    if (analyse) {
+      breaks.sample(m);
+    }
     if (m.test.stage != TestStage::Shear) {
       continue;
     }
@@ -447,6 +534,8 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   }
   r.broken = countBonds(m.bonds).broken;
   if (analyse) {
+    r.earlyBreaks = breaks.summary(std::max<std::size_t>(1, r.brokenAtPeak / 10)) + "\n  up to the peak, " +
+      breaks.summary(r.brokenAtPeak);
     r.damage = damageBreakdown(start0, m);
     r.nearPlatens = platenShare(m, o.profile);
     const FractureNetwork dfn = extractFractures(m, FractureParameters{});
@@ -528,7 +617,7 @@ int main(int argc, char** argv)
   std::printf("specimen: %zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
               m.particles.size(), width, width, m.domain.size.z(), width / diameter,
               compacted.summary().c_str());
-  std::printf("cement: Bond Range %.3g, Moment Contribution %.3g -> %s (%.1f s)\n", o.range, o.beta,
+  std::printf("cement: Bond Range %.3g, Moment Contribution %.3g, Softening Ratio %.3g -> %s (%.1f s)\n", o.range, o.beta, o.softening,
               cemented.summary().c_str(), secondsSince(start));
   std::fflush(stdout);
 
@@ -540,8 +629,8 @@ int main(int argc, char** argv)
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
                 u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
-    std::printf("  broken at the peak: %zu (%.1f %% of bonds)\n  %s\n", u.brokenAtPeak,
-                100.0 * u.brokenAtPeak / cemented.bonds, u.damage.c_str());
+    std::printf("  broken at the peak: %zu (%.1f %% of bonds)\n  %s\n  %s\n", u.brokenAtPeak,
+                100.0 * u.brokenAtPeak / cemented.bonds, u.damage.c_str(), u.earlyBreaks.c_str());
     if (!u.peaked) {
       std::printf("  no peak: the stress did not fall to 70 %% of its largest value within Max Strain %g\n", o.maxStrain);
     }
