@@ -68,7 +68,7 @@ def envelope_chart(points, fits, out):
     print("wrote", out)
 
 
-def specimen_picture(path, out):
+def specimen_picture(path, out, title="Membrane cylinder after failure"):
     grains, cracks = [], {"tension": [], "shear": []}
     with open(path) as f:
         for row in csv.DictReader(f):
@@ -122,7 +122,7 @@ def specimen_picture(path, out):
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("z (mm, axis)")
     ax.legend(loc="upper right", fontsize=7)
-    ax.set_title("Membrane cylinder after failure\n(slab through the axis)")
+    ax.set_title(title + "\n(slab through the axis)")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     print("wrote", out)

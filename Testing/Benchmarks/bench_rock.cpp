@@ -13,6 +13,8 @@
 //     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
 //     peaks and Mohr-Coulomb fit ("envelope" lines, read by scripts/plot_envelopes.py);
 //     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
+//   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
+//     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -226,6 +228,7 @@ struct TestResult {
   double discShare = 0.0;     // broken bonds in discs / broken bonds
   double strainAt70 = 0.0;
   std::size_t brokenAtPeak = 0; // broken bonds at the sample of the peak stress
+  std::size_t softeningAtPeak = 0; // intact bonds past their strength (damage > 0) then
   std::string damage;           // damageBreakdown at the end
   std::string earlyBreaks;      // failureCauses: what broke the first 10 % of the breaks at the peak
   bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
@@ -509,6 +512,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       r.peak = sigma;
       r.peakStrain = e;
       r.brokenAtPeak = countBonds(m.bonds).broken;
+      r.softeningAtPeak = 0;
+      for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+        r.softeningAtPeak += !m.bonds.broken(k) && m.bonds.damage[k] > 0.0;
+      }
     }
     if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
@@ -623,14 +630,19 @@ int main(int argc, char** argv)
 
   double ucs = 0.0;
   if (wants(o, "ucs")) {
-    const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true);
+    Model failed;
+    const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed);
+    if (!o.dump.empty()) {
+      dumpSpecimen(failed, o.dump + "/ucs_failed.csv"); // the frame at 70 % of the peak
+    }
     ucs = u.peak;
     std::printf("UCS %.4g Pa at strain %.4g; E %.4g Pa; nu %.3f; broken %zu (%.1f %% of bonds); "
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
                 u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
-    std::printf("  broken at the peak: %zu (%.1f %% of bonds)\n  %s\n  %s\n", u.brokenAtPeak,
-                100.0 * u.brokenAtPeak / cemented.bonds, u.damage.c_str(), u.earlyBreaks.c_str());
+    std::printf("  broken at the peak: %zu (%.1f %% of bonds); softening then (intact, damage > 0): %zu (%.1f %%)\n  %s\n  %s\n",
+                u.brokenAtPeak, 100.0 * u.brokenAtPeak / cemented.bonds, u.softeningAtPeak,
+                100.0 * u.softeningAtPeak / cemented.bonds, u.damage.c_str(), u.earlyBreaks.c_str());
     if (!u.peaked) {
       std::printf("  no peak: the stress did not fall to 70 %% of its largest value within Max Strain %g\n", o.maxStrain);
     }

@@ -125,6 +125,11 @@ dem::Model CementedPack()
     b.failurePosition[k] = dem::Vec3(-0.99, 2.01 + 1e-5 * k, 3.51);
     b.failureNormal[k] = dem::Vec3(1.0, 2.0, -3.0 + 0.1 * k).normalized();
   }
+  for (std::size_t k = 0; k < b.size(); k += 5) // tension softening: ratio and damage travel too
+  {
+    b.softening[k] = 0.5 + 0.25 * static_cast<double>(k % 11);
+    b.damage[k] = b.broken(k) ? 0.0 : 0.1 + 0.1 * static_cast<double>(k % 7);
+  }
   return model;
 }
 
@@ -139,6 +144,8 @@ void ExpectBondsBitwiseEqual(const dem::Bonds& a, const dem::Bonds& b)
   EXPECT_TRUE(BitwiseEqual(a.cohesion, b.cohesion));
   EXPECT_TRUE(BitwiseEqual(a.frictionAngle, b.frictionAngle));
   EXPECT_TRUE(BitwiseEqual(a.momentContribution, b.momentContribution));
+  EXPECT_TRUE(BitwiseEqual(a.softening, b.softening));
+  EXPECT_TRUE(BitwiseEqual(a.damage, b.damage));
   EXPECT_TRUE(BitwiseEqual(a.normalForce, b.normalForce));
   EXPECT_TRUE(BitwiseEqual(a.shearForce, b.shearForce));
   EXPECT_TRUE(BitwiseEqual(a.twistingMoment, b.twistingMoment));

@@ -41,12 +41,15 @@ inline Model settlingPack()
   return m;
 }
 
-/// Cemented specimen under unconfined compression, stopped once bonds have broken.
-inline Model cementedMidCompression()
+/// A cemented specimen (400 grains, consolidated at 20 kPa, cemented with `cement`) under
+/// unconfined compression, stopped at the first 250-step batch after which `enough(m)`
+/// holds; throws naming `name` if the test ends first.
+template <class Enough>
+inline Model compressedUntil(const CementParameters& cement, Enough enough, const char* name)
 {
   Model m = testing::specimen(400, 0.016, 0.0008, 0.0012, 3);
   testing::consolidate(m, 2e4);
-  cement(m, testing::testCement());
+  dem::cement(m, cement);
   LoadTestSettings s;
   s.mode = TestMode::Compression;
   s.strainRate = 1.0;
@@ -54,45 +57,39 @@ inline Model cementedMidCompression()
   s.sampleInterval = 100;
   startLoadTest(m, s);
   Simulation sim(m);
-  for (int k = 0; k < 400 && countBonds(m.bonds).broken < 10; ++k) {
+  for (int k = 0; k < 400 && !enough(m); ++k) {
     sim.advance(250);
   }
-  if (countBonds(m.bonds).broken < 10 || m.test.stage != TestStage::Shear) {
-    throw std::runtime_error("cementedMidCompression: no broken bonds before the end of the test");
+  if (!enough(m) || m.test.stage != TestStage::Shear) {
+    throw std::runtime_error(std::string(name) + ": the test ended before the state it waits for");
   }
   return m;
 }
 
-/// The cemented specimen of cementedMidCompression with tension-softening bonds (Softening
-/// Ratio 2), stopped while at least 10 intact bonds are softening (0 < damage < 1).
+/// Cemented specimen under unconfined compression, stopped once bonds have broken.
+inline Model cementedMidCompression()
+{
+  return compressedUntil(testing::testCement(), [](const Model& m) { return countBonds(m.bonds).broken >= 10; },
+                         "cementedMidCompression");
+}
+
+/// Intact bonds that are softening (0 < damage < 1).
+inline std::size_t softeningBonds(const Bonds& b)
+{
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    n += !b.broken(k) && b.damage[k] > 0.0;
+  }
+  return n;
+}
+
+/// The same specimen with tension-softening bonds (Softening Ratio 2), stopped while at
+/// least 10 intact bonds are softening.
 inline Model softeningMidCompression()
 {
-  Model m = testing::specimen(400, 0.016, 0.0008, 0.0012, 3);
-  testing::consolidate(m, 2e4);
   CementParameters c = testing::testCement();
   c.softeningRatio = 2.0;
-  cement(m, c);
-  LoadTestSettings s;
-  s.mode = TestMode::Compression;
-  s.strainRate = 1.0;
-  s.maxStrain = 0.03;
-  s.sampleInterval = 100;
-  startLoadTest(m, s);
-  Simulation sim(m);
-  const auto softening = [&m] {
-    std::size_t n = 0;
-    for (std::size_t k = 0; k < m.bonds.size(); ++k) {
-      n += !m.bonds.broken(k) && m.bonds.damage[k] > 0.0;
-    }
-    return n;
-  };
-  for (int k = 0; k < 400 && softening() < 10; ++k) {
-    sim.advance(250);
-  }
-  if (softening() < 10 || m.test.stage != TestStage::Shear) {
-    throw std::runtime_error("softeningMidCompression: no softening bonds before the end of the test");
-  }
-  return m;
+  return compressedUntil(c, [](const Model& m) { return softeningBonds(m.bonds) >= 10; }, "softeningMidCompression");
 }
 
 /// A triaxial test on `m` at 100 kPa with the given confinement, past consolidation, in
