@@ -95,6 +95,20 @@ print("run:", rockdem.read_only(run, "Status"))
 cement.StrengthScatter = 0.2
 cement.UpdatePipeline()
 c.check(rockdem.read_only(cement, "Bonds") == bonds, "re-cementing with scatter replaces the same bonds")
+# Softening Ratio (tension softening, Cement.md): every bond carries it, damage starts at 0;
+# out of [0, 100] it is named.
+cement.SofteningRatio = 2.5
+cement.UpdatePipeline()
+softened = block(servermanager.Fetch(cement), "Bonds").GetCellData()
+ratios = softened.GetArray("SofteningRatio")
+damage = softened.GetArray("SofteningDamage")
+c.check(ratios is not None and ratios.GetRange() == (2.5, 2.5), "every bond's SofteningRatio is 2.5")
+c.check(damage is not None and damage.GetRange() == (0.0, 0.0), "SofteningDamage is 0 after cementing")
+cement.SofteningRatio = 101.0
+cement.UpdatePipeline()
+message = rockdem.read_only(cement, "LastMessage")
+c.check("Softening Ratio" in message and "100" in message, "a bad Softening Ratio is named: %s" % message)
+cement.SofteningRatio = 0.0
 cement.BondRadiusMultiplier = 2.0
 cement.UpdatePipeline()
 message = rockdem.read_only(cement, "LastMessage")
