@@ -511,8 +511,10 @@ int runThroughput(const Options& o)
                     contacts, modelBytes, solverBytes, peakBytes, others);
         std::fflush(stdout);
         char line[512];
+        std::string csvPath = path; // the path says why with commas: ';' keeps the columns
+        std::replace(csvPath.begin(), csvPath.end(), ',', ';');
         std::snprintf(line, sizeof(line), "%s,%.0f,%d,%s,%ld,%.9g,%.6f,%.6g,%zu,%.1f,%.1f,%.1f,%.8g,%.2f",
-                      pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
+                      pack.c_str(), n, threads, csvPath.c_str(), steps, timestep, seconds, rate,
                       contacts, modelBytes, solverBytes, peakBytes, kinetic, others);
         csv.line(line, false);
         if (report.saturated) {
