@@ -34,17 +34,13 @@ if not plugin or not os.path.exists(plugin):
 LoadPlugin(plugin, remote=False, ns=globals())
 import rockdem  # noqa: E402
 
-hdr, rows = {}, []
-with open(a.pack) as f:
-    for line in f:
-        if line.startswith("#"):
-            parts = line[1:].split()
-            try:
-                hdr[parts[0]] = [float(v) for v in parts[1:]]
-            except (ValueError, IndexError):
-                pass  # a comment, not a number
-        elif line.strip():
-            rows.append(line.split())
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from liggghts_deck import read_pack  # noqa: E402
+
+header, lines = read_pack(a.pack)
+hdr = {k: [float(x) for x in v] for k, v in header.items() if k in (
+    "box", "timestep", "density", "youngs_modulus", "poissons_ratio", "restitution", "friction", "gravity")}
+rows = [line.split() for line in lines]
 g = lambda k: hdr[k][0]
 xlo, xhi, ylo, yhi, zlo, zhi = hdr["box"]
 dt = g("timestep")
