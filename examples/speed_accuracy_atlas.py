@@ -44,14 +44,20 @@ plt = pyplot()
 # Tensile 1 MPa, Cohesion 4 MPa, Moment Contribution 0.5, Bond Range 1.4).
 ROCK = ["--modulus", "1e10", "--tensile", "1e6", "--cohesion", "4e6", "--moment-contribution", "0.5",
         "--range", "1.4", "--max-strain", "0.03"]
-FULL = {"particles": 200, "rates": [64, 16, 4, 1, 0.5, 0.25],
-        "moduli": [1e10, 1e9, 1e8, 1e7], "modulus_factor": 4, "threads_factor": 16}
-QUICK = {"particles": 300, "rates": [64, 32, 16], "moduli": [1e10, 1e8], "modulus_factor": 64,
-         "threads_factor": 64}
-SWEEP = re.compile(r"rate-sweep: factor (\S+) strain rate (\S+) 1/s suggested (\S+) 1/s timestep (\S+) s "
+# The strain-rate sweep: (name, factors, inertial target of the suggestion the factors
+# multiply, or None for the engine's rule). The full sweep was run at the rule's first
+# target, 1e-4 (bench --inertial-target 1e-4): the table and chart give each rate against
+# the suggestion of the rule now, CEMENTED_TARGET (the suggestion is proportional to the target).
+CEMENTED_TARGET = 2.5e-5  # dem::CementedTargetInertialNumber
+FULL = {"particles": 200, "rate_runs": [("rates", [64, 16, 4, 1, 0.5, 0.25], 1e-4),
+                                        ("rates_slow", [0.0625], 1e-4)],
+        "moduli": [1e10, 1e9, 1e8, 1e7], "modulus_factor": 16, "threads_factor": 64}
+QUICK = {"particles": 300, "rate_runs": [("rates", [256, 128, 64], None)], "moduli": [1e10, 1e8], "modulus_factor": 256,
+         "threads_factor": 256}
+SWEEP = re.compile(r"rate-sweep: factor (\S+) strain rate (\S+) 1/s suggested (\S+) 1/s target (\S+) timestep (\S+) s "
                    r"UCS (\S+) Pa strain at peak (\S+) E (\S+) Pa inertial (\S+) ufr (\S+) steps (\d+) "
                    r"seconds (\S+) peaked (\d)")
-KEYS = ["factor", "rate", "suggested", "timestep", "ucs", "peak_strain", "E", "inertial", "ufr", "steps",
+KEYS = ["factor", "rate", "suggested", "target", "timestep", "ucs", "peak_strain", "E", "inertial", "ufr", "steps",
         "seconds", "peaked"]
 
 
@@ -102,7 +108,7 @@ def parse(lines):
         m = SWEEP.search(line)
         if m:
             row = {k: float(v) for k, v in zip(KEYS, m.groups())}
-            row["ucs_text"] = m.group(5)
+            row["ucs_text"] = m.group(6)
             rows.append(row)
     if not rows:
         sys.exit("no rate-sweep lines in the bench output")
@@ -120,9 +126,18 @@ def table(header, rows):
 
 
 def rates_section(bench, cfg, work, out):
-    args = ["--particles", str(cfg["particles"]), "--threads", "1", "--tests", "rates", "--rate-factors",
-            ",".join("%g" % f for f in cfg["rates"])] + ROCK
-    rows, note = run(bench, args, work, "rates", cfg is FULL)
+    rows, notes, commands = [], [], []
+    for name, factors, target in cfg["rate_runs"]:
+        args = ["--particles", str(cfg["particles"]), "--threads", "1", "--tests", "rates", "--rate-factors",
+                ",".join("%g" % f for f in factors)] + (["--inertial-target", "%g" % target] if target else []) + ROCK
+        r, note = run(bench, args, work, name, cfg is FULL)
+        rows += r
+        notes.append(note)
+        commands.append("`rockdem_bench_rock %s`" % " ".join(args))
+    for r in rows:
+        # Against the suggestion of the rule now (cemented: CEMENTED_TARGET).
+        r["suggested_now"] = r["suggested"] * CEMENTED_TARGET / r["target"]
+        r["factor"] = r["rate"] / r["suggested_now"]
     rows.sort(key=lambda r: r["factor"])
     ref = rows[0]
     fig, ax = plt.subplots(2, 2, figsize=(10, 7))
@@ -153,8 +168,11 @@ def rates_section(bench, cfg, work, out):
                  [["%g" % r["factor"], "%.4g" % r["rate"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
                    "%.4g" % r["E"], "%+.2f %%" % pct(r["E"], ref["E"]), "%.4g" % r["peak_strain"],
                    "%.3g" % r["inertial"], "%.3g" % r["ufr"], "%d" % r["steps"], "%.1f" % r["seconds"]] for r in rows])
-    text = "Command: `rockdem_bench_rock %s` (%s; %s).\n\nSuggested Strain Rate %.4g 1/s, timestep %.4g s.\n\n%s" % (
-        " ".join(args), machine(), note, ref["suggested"], ref["timestep"], body)
+    text = ("Commands: %s (%s; %s).\n\nSuggested Strain Rate %.4g 1/s (inertial number %g at the estimated peak; "
+            "the runs' own suggestion at target %s: %s 1/s), timestep %.4g s.\n\n%s") % (
+        ", ".join(commands), machine(), "; ".join(notes), ref["suggested_now"], CEMENTED_TARGET,
+        "/".join(sorted(set("%g" % r["target"] for r in rows))),
+        "/".join(sorted(set("%.4g" % r["suggested"] for r in rows))), ref["timestep"], body)
     return text, rows, [image]
 
 

@@ -11,6 +11,7 @@
 //   rockdem_bench_rock --tests rates --rate-factors 0.0625,0.25,1,4,16,64
 //     unconfined tests at those multiples of the Suggested Strain Rate on one specimen,
 //     one "rate-sweep:" line each (examples/speed_accuracy_atlas.py reads them);
+//     --inertial-target I: the suggestion at inertial number I (the engine's rule otherwise);
 //     --rate-factor F loads at F x the Suggested Strain Rate known before the test
 //     (dem::suggestedStrainRate) instead of --strain-per-step, and the UCS line is followed
 //     by a "rate:" line (rate, suggestion, inertial number at the peak, unbalanced force
@@ -69,6 +70,7 @@ struct Options {
   double scatter = 0.2;
   double strainPerStep = 2e-7;  // platen strain per step (sets the strain rate)
   double rateFactor = 0.0;      // > 0: the strain rate is this x the Suggested Strain Rate (overrides --strain-per-step)
+  double inertialTarget = 0.0;  // > 0: the suggestion at this inertial number instead of the engine's target
   double safety = 0.3;
   double damping = 0.7;
   double maxStrain = 0.03;
@@ -96,7 +98,8 @@ Options parse(int argc, char** argv)
     { "--moment-contribution", &o.beta },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
-    { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor } };
+    { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
+    { "--inertial-target", &o.inertialTarget } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -239,6 +242,7 @@ struct TestResult {
   bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
   double strainRate = 0.0;    // 1/s, of the test
   double suggested = 0.0;     // 1/s, Suggested Strain Rate before the test (dem::suggestedStrainRate)
+  double target = 0.0;        // the inertial number the suggestion aims at
   double timestep = 0.0;      // s
   double inertialAtPeak = 0.0;  // inertial number at the peak sample
   double ufrBeforePeak = 0.0;   // mean unbalanced force ratio over the samples up to the peak
@@ -413,7 +417,11 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   startLoadTest(m, s);
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
-  r.suggested = suggestedStrainRate(m, s);
+  const PeakStressEstimate estimate = estimatePeakStress(m, s);
+  r.target = o.inertialTarget > 0.0 ? o.inertialTarget
+                                    : (estimate.cemented ? CementedTargetInertialNumber : TargetInertialNumber);
+  r.suggested = o.inertialTarget > 0.0 ? strainRateForInertialNumber(m, estimate.mean, o.inertialTarget)
+                                       : suggestedStrainRate(m, s);
   if (o.rateFactor > 0.0) {
     s.strainRate = o.rateFactor * r.suggested;
   }
@@ -590,9 +598,9 @@ int main(int argc, char** argv)
       Options at = o;
       at.rateFactor = f;
       const TestResult u = runTest(m, TestMode::Compression, 0.0, at, false);
-      std::printf("rate-sweep: factor %g strain rate %.6g 1/s suggested %.6g 1/s timestep %.6g s UCS %.17g Pa "
+      std::printf("rate-sweep: factor %g strain rate %.6g 1/s suggested %.6g 1/s target %g timestep %.6g s UCS %.17g Pa "
                   "strain at peak %.6g E %.6g Pa inertial %.6g ufr %.6g steps %lld seconds %.3f peaked %d\n",
-                  f, u.strainRate, u.suggested, u.timestep, u.peak, u.peakStrain, u.E, u.inertialAtPeak,
+                  f, u.strainRate, u.suggested, u.target, u.timestep, u.peak, u.peakStrain, u.E, u.inertialAtPeak,
                   u.ufrBeforePeak, static_cast<long long>(u.steps), u.seconds, u.peaked ? 1 : 0);
       std::fflush(stdout);
     }
