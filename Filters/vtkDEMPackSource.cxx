@@ -133,6 +133,16 @@ dem::PackParameters vtkDEMPackSource::PackSettings() const
   return params;
 }
 
+dem::Model vtkDEMPackSource::ConfiguredModel(vtkInformationVector** inputVector)
+{
+  double origin[3];
+  double size[3];
+  this->ResolveBox(inputVector, origin, size);
+  dem::Model configured;
+  this->ConfigureModel(configured, origin, size);
+  return configured;
+}
+
 int vtkDEMPackSource::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -141,11 +151,7 @@ int vtkDEMPackSource::RequestInformation(
   this->EstimatedMemory = 0.0;
   try
   {
-    double origin[3];
-    double size[3];
-    this->ResolveBox(inputVector, origin, size);
-    dem::Model configured;
-    this->ConfigureModel(configured, origin, size);
+    const dem::Model configured = this->ConfiguredModel(inputVector);
     const bool adds = this->Commands.find('A') != std::string::npos;
     this->EstimatedMemory =
       dem::estimateMemory(dem::expectedParticleCount(this->PackSettings(), configured.domain, adds));
@@ -162,12 +168,7 @@ int vtkDEMPackSource::RequestData(
   vtkInternals& cache = *this->Internals;
   try
   {
-    double origin[3];
-    double size[3];
-    this->ResolveBox(inputVector, origin, size);
-
-    dem::Model configured;
-    this->ConfigureModel(configured, origin, size);
+    dem::Model configured = this->ConfiguredModel(inputVector);
 
     const dem::PackParameters params = this->PackSettings();
     dem::validate(params, configured.domain);

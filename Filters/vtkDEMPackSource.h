@@ -133,6 +133,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The pack parameters from the properties.
   dem::PackParameters PackSettings() const;
+  /// An empty model with the box (resolved against the input with Fit To Input) and the
+  /// material of the properties.
+  dem::Model ConfiguredModel(vtkInformationVector** inputVector);
 
   vtkIdType InitialElements; ///< 64-bit: a count beyond 2^31 reaches the engine's memory check
   double MinimumSize;
