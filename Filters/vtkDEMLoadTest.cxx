@@ -757,18 +757,14 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   {
     vtkOutputWindowDisplayText((estimate.str() + "\n").c_str());
   }
-  // A strain rate far above the suggestion is risky (a strength too high), far below it
-  // wasteful: what the atlas measured (dem::strainRateAdvice).
+  // A strain rate far above the suggestion is risky (a strength too high): what the atlas
+  // measured (dem::strainRateAdvice).
   if (testing && press.mode != dem::TestMode::Isotropic)
   {
     const std::string advice = dem::strainRateAdvice(this->StrainRate, this->SuggestedStrainRate);
-    if (!advice.empty() && this->StrainRate > this->SuggestedStrainRate)
+    if (!advice.empty())
     {
       vtkWarningMacro(<< "DEM Load Test: " << advice);
-    }
-    else if (!advice.empty())
-    {
-      vtkOutputWindowDisplayText(("DEM Load Test: " + advice + "\n").c_str());
     }
   }
   if (!in.Simulation->timestepMessage().empty())

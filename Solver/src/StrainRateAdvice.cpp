@@ -56,8 +56,6 @@ BondStrengths bondStrengths(const Model& model)
 constexpr const char* FastRateAdviceMeasured =
   "on a cemented 200-grain rock the atlas measured the UCS 5.0 % above the UCS at the suggestion at 4 x it, "
   "12.8 % above at 16 x and 19.5 % above at 64 x";
-constexpr const char* SlowRateAdviceMeasured =
-  "the atlas measured the UCS at 0.25 x the suggestion within SLOWPCT of the UCS at the suggestion";
 
 std::string fmt(double v)
 {
@@ -167,12 +165,6 @@ std::string strainRateAdvice(double strainRate, double suggested)
       fmt(suggested) + " 1/s: the test is not quasi-static, and its peak stress comes out too high (" +
       std::string(FastRateAdviceMeasured) + "; Documentation/SpeedAccuracy.md). Use at most " +
       fmt(FastRateFactor * suggested) + " 1/s for a strength.";
-  }
-  if (ratio < SlowRateFactor) {
-    return "Strain Rate " + fmt(strainRate) + " 1/s is " + fmt(ratio) + " x the Suggested Strain Rate " +
-      fmt(suggested) + " 1/s: slower than needed (" + std::string(SlowRateAdviceMeasured) +
-      "; Documentation/SpeedAccuracy.md); " + fmt(SlowRateFactor * suggested) + " 1/s would take " +
-      fmt(SlowRateFactor / ratio) + " x less time.";
   }
   return "";
 }

@@ -170,3 +170,17 @@ TEST(StrainRateAdvice, RightOrderOnACementedSpecimen)
                 1e-9 * refined);
   }
 }
+
+// The advice in Output Messages (DEM Load Test): above FastRateFactor x the suggestion it
+// names the rate, the multiple and what the atlas measured; none at or below it, and none
+// when the suggestion is unknown.
+TEST(StrainRateAdvice, AdviceAboveFourTimesTheSuggestionOnly)
+{
+  EXPECT_EQ(strainRateAdvice(4.0, 1.0), "");
+  EXPECT_EQ(strainRateAdvice(0.01, 1.0), "");
+  EXPECT_EQ(strainRateAdvice(10.0, 0.0), "");
+  const std::string fast = strainRateAdvice(10.0, 1.0);
+  EXPECT_NE(fast.find("Strain Rate 10 1/s is 10 x the Suggested Strain Rate 1 1/s"), std::string::npos) << fast;
+  EXPECT_NE(fast.find("12.8 %"), std::string::npos) << fast;
+  EXPECT_NE(fast.find("at most 4 1/s"), std::string::npos) << fast;
+}

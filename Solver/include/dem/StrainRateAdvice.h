@@ -76,14 +76,13 @@ double suggestedStrainRate(const Model& model, const LoadTestSettings& settings)
 /// Above this multiple of the Suggested Strain Rate a test is risky: the atlas measured the
 /// UCS too high there (Documentation/SpeedAccuracy.md, "Strain rate").
 constexpr double FastRateFactor = 4.0;
-/// Below this multiple it is wasteful: the atlas measured no change in the UCS from there
-/// down, and the run takes 1 / factor times as long.
-constexpr double SlowRateFactor = 0.25;
+/// (No advice below the suggestion: the atlas measured the UCS still falling at 0.25 x it,
+/// so a slower test is not wasted; Documentation/SpeedAccuracy.md.)
 
 /// One line of advice for a test run at `strainRate` (1/s) when the suggestion is
-/// `suggested` (1/s): "" when suggested is 0 (unknown) or the rate lies within
-/// [SlowRateFactor, FastRateFactor] x suggested; else what the atlas measured at such a
-/// rate and what to change.
+/// `suggested` (1/s): "" when suggested is 0 (unknown) or the rate is at most
+/// FastRateFactor x suggested; else what the atlas measured at such a rate and what to
+/// change.
 std::string strainRateAdvice(double strainRate, double suggested);
 
 } // namespace dem
