@@ -145,13 +145,13 @@ def rates_section(bench, cfg, work, out):
     ax[0][0].semilogx(f, [pct(r["ucs"], ref["ucs"]) for r in rows], "o-", label="UCS")
     ax[0][0].semilogx(f, [pct(r["E"], ref["E"]) for r in rows], "s--", label="E")
     ax[0][0].axhspan(-1, 1, color="0.9")
-    ax[0][0].set_ylabel("difference from %gx (%%)" % ref["factor"])
+    ax[0][0].set_ylabel("difference from %.3gx (%%)" % ref["factor"])
     ax[0][0].legend()
     ax[0][1].loglog(f, [r["ufr"] for r in rows], "o-")
     ax[0][1].axhline(0.01, color="0.5", ls=":")
     ax[0][1].set_ylabel("mean unbalanced force ratio to the peak")
     ax[1][0].loglog(f, [r["inertial"] for r in rows], "o-")
-    ax[1][0].axhline(1e-4, color="0.5", ls=":")
+    ax[1][0].axhline(CEMENTED_TARGET, color="0.5", ls=":")
     ax[1][0].set_ylabel("inertial number at the peak")
     ax[1][1].loglog(f, [r["seconds"] for r in rows], "o-")
     ax[1][1].set_ylabel("run time (s)")
@@ -165,7 +165,7 @@ def rates_section(bench, cfg, work, out):
     plt.close(fig)
     body = table(["rate / suggested", "strain rate (1/s)", "UCS (Pa)", "UCS vs slowest", "E (Pa)", "E vs slowest",
                   "strain at peak", "inertial number at peak", "unbalanced force ratio", "steps", "run time (s)"],
-                 [["%g" % r["factor"], "%.4g" % r["rate"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
+                 [["%.3g" % r["factor"], "%.4g" % r["rate"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
                    "%.4g" % r["E"], "%+.2f %%" % pct(r["E"], ref["E"]), "%.4g" % r["peak_strain"],
                    "%.3g" % r["inertial"], "%.3g" % r["ufr"], "%d" % r["steps"], "%.1f" % r["seconds"]] for r in rows])
     text = ("Commands: %s (%s; %s).\n\nSuggested Strain Rate %.4g 1/s (inertial number %g at the estimated peak; "
