@@ -16,6 +16,8 @@
 //     (dem::suggestedStrainRate) instead of --strain-per-step, and the UCS line is followed
 //     by a "rate:" line (rate, suggestion, inertial number at the peak, unbalanced force
 //     ratio up to it), read by examples/speed_accuracy_atlas.py
+//   rockdem_bench_rock --tests tension,brazilian: a Brazilian disc (diameter = width, thickness
+//     width / 2) carved from the same pack, its strength over the direct tensile strength.
 //   rockdem_bench_rock --tests envelopes --specimen both --sigma3 1e6,2e6,4e6 [--dump DIR]
 //     triaxial tests at absolute confining stresses on a box (rigid walls) and on a cylinder
 //     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
@@ -34,6 +36,7 @@
 #include "dem/StrainRateAdvice.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -127,7 +130,7 @@ Options parse(int argc, char** argv)
     } else if (a == "--length-stiffness") {
       o.lengthStiffness = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial] [--confining f1,f2,..]"
+      std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
                            " [--seed S] [--threads T] [--profile]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
@@ -146,7 +149,9 @@ double secondsSince(std::chrono::steady_clock::time_point t)
 
 /// The specimen: a W x W x aspect W box holding about `particles` grains at the target
 /// porosity, placed, compacted and cemented.
-Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& compacted, bool cylinder = false)
+enum class Carve { None, Cylinder, BrazilianDisc };
+
+Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& compacted, Carve carve = Carve::None)
 {
   Model m;
   const double a = o.rmin;
@@ -181,14 +186,15 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   CompactParameters c;
   c.targetPorosity = o.porosity;
   compacted = compactElements(m, c);
-  if (cylinder) {
-    // The cylinder inscribed in the box (diameter = width, length = height), carved before
-    // the cement as in the laboratory workflow (Documentation/Specimens.md).
+  if (carve != Carve::None) {
+    // Carved before the cement as in the laboratory workflow (Documentation/Specimens.md):
+    // the cylinder inscribed in the box (diameter = width, length = height), or the
+    // Brazilian disc at the box's centre (diameter = width, thickness = width / 2, axis Z).
     SpecimenSettings shape;
-    shape.shape = SpecimenShape::Cylinder;
+    shape.shape = carve == Carve::Cylinder ? SpecimenShape::Cylinder : SpecimenShape::Disc;
     shape.axis = 2;
     shape.diameter = full.x();
-    shape.length = full.z();
+    shape.length = carve == Carve::Cylinder ? full.z() : 0.5 * full.x();
     carveSpecimen(m, shape);
   }
   CementParameters cp;
@@ -516,6 +522,88 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   return r;
 }
 
+/// The Brazilian test on a disc (axis Z) squeezed along Y at the platen strain per step of
+/// the other tests, until the load has fallen to 70 % of its peak: Brazilian Strength
+/// (2P / (pi D t) at the peak), the broken bonds then, and the DFN of that frame.
+struct BrazilianRun {
+  double strength = 0.0;      // Pa
+  double peakStrain = 0.0;
+  std::size_t brokenAtPeak = 0, broken = 0;
+  double centralBand = 0.0;   // share of the broken bonds within D/6 of the loaded diameter (x = centre)
+  std::string dfn;
+  std::size_t discs = 0;
+  double largestDisc = 0.0, discShare = 0.0;
+  std::int64_t steps = 0;
+  double seconds = 0.0;
+  bool peaked = false;
+  std::array<double, 2> disc{ 0.0, 0.0 }; // m, diameter D and thickness t
+};
+
+BrazilianRun runBrazilian(Model m, const Options& o)
+{
+  BrazilianRun r;
+  const auto start = std::chrono::steady_clock::now();
+  LoadTestSettings s;
+  s.mode = TestMode::Brazilian;
+  s.axis = 1;
+  s.maxStrain = o.maxStrain;
+  s.sampleInterval = 50;
+  s.platenFriction = o.platenFriction;
+  startLoadTest(m, s);
+  {
+    Simulation sim(m);
+    s.strainRate = o.strainPerStep / sim.timestep();
+  }
+  startLoadTest(m, s);
+  const std::array<double, 2> disc = brazilianDisc(m);
+  r.disc = disc;
+  double centreX = 0.0;
+  for (const Vec3& p : m.particles.position) {
+    centreX += p.x() / static_cast<double>(m.particles.size());
+  }
+  Simulation run(m);
+  while (m.test.stage != TestStage::Done) {
+    run.advance(s.sampleInterval);
+    r.steps += s.sampleInterval;
+    const TestMeasurements me = run.measurements();
+    if (me.axialStress > r.strength) {
+      r.strength = me.axialStress;
+      r.peakStrain = me.strain[1];
+      r.brokenAtPeak = countBonds(m.bonds).broken;
+    }
+    if (r.strength > 0.0 && me.axialStress < 0.7 * r.strength) {
+      r.peaked = true;
+      break;
+    }
+  }
+  r.broken = countBonds(m.bonds).broken;
+  std::size_t band = 0;
+  for (std::size_t b = 0; b < m.bonds.size(); ++b) {
+    if (m.bonds.broken(b) && std::abs(m.bonds.failurePosition[b].x() - centreX) <= disc[0] / 6.0) {
+      ++band;
+    }
+  }
+  r.centralBand = r.broken ? static_cast<double>(band) / r.broken : 0.0;
+  const FractureNetwork dfn = extractFractures(m, FractureParameters{});
+  r.discs = dfn.discs.size();
+  for (const FractureDisc& d : dfn.discs) {
+    r.largestDisc = std::max(r.largestDisc, d.radius);
+  }
+  r.discShare = dfn.report.total.brokenBonds
+    ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
+  r.dfn = dfn.report.summary();
+  for (const FractureDisc& d : dfn.discs) {
+    char line[260];
+    const Vec3 c = d.center - m.domain.origin;
+    std::snprintf(line, sizeof line,
+      "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
+      fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
+    r.dfn += line;
+  }
+  r.seconds = secondsSince(start);
+  return r;
+}
+
 /// Writes the failed membrane specimen for scripts/plot_envelopes.py: one line per
 /// particle (x, y, z, radius, and its displacement during the test dx, dy, dz; m) and per
 /// broken bond (kind tension or shear, its failure position).
@@ -616,6 +704,30 @@ int main(int argc, char** argv)
     }
     std::fflush(stdout);
   }
+  if (wants(o, "brazilian")) {
+    // The Brazilian disc carved from the same pack (the same compaction, the same cement
+    // parameters; the bonds of the carved set): Brazilian Strength against the direct
+    // tensile strength of the box specimen above.
+    CementReport c2;
+    CompactReport p2;
+    const Model disc = buildSpecimen(o, c2, p2, Carve::BrazilianDisc);
+    const BrazilianRun b = runBrazilian(disc, o);
+    const std::array<double, 2> dt = b.disc;
+    std::printf("brazilian disc: %zu particles carved from the same pack, diameter %.4g m, thickness %.4g m, "
+                "%.1f mean diameters across; %s\n",
+                disc.particles.size(), dt[0], dt[1], dt[0] / meanParticleDiameter(disc), c2.summary().c_str());
+    std::printf("Brazilian Strength %.4g Pa at strain %.4g; broken at the peak %zu (%.1f %% of bonds), %zu at 70 %% "
+                "of the peak; %.1f %% of them within D/6 of the loaded diameter (%lld steps, %.1f s)%s\n",
+                b.strength, b.peakStrain, b.brokenAtPeak, 100.0 * b.brokenAtPeak / c2.bonds, b.broken,
+                100.0 * b.centralBand, static_cast<long long>(b.steps), b.seconds,
+                b.peaked ? "" : " (no fall to 70 % within Max Strain)");
+    std::printf("  Brazilian DFN: %zu discs, largest radius %.4g m (%.0f %% of D), %.1f %% of broken bonds in discs\n  %s\n",
+                b.discs, b.largestDisc, 100.0 * b.largestDisc / dt[0], 100.0 * b.discShare, b.dfn.c_str());
+    if (tensile > 0.0) {
+      std::printf("Brazilian / direct tensile strength = %.2f (laboratory: about 1.1-1.4)\n", b.strength / tensile);
+    }
+    std::fflush(stdout);
+  }
   if (wants(o, "envelopes")) {
     // The same rock in a rigid box and in a membrane cylinder: triaxial tests at the same
     // absolute confining stresses.
@@ -627,7 +739,7 @@ int main(int argc, char** argv)
       CementReport c2;
       CompactReport p2;
       const auto built = std::chrono::steady_clock::now();
-      const Model spec = cylinder ? buildSpecimen(o, c2, p2, true) : m;
+      const Model spec = cylinder ? buildSpecimen(o, c2, p2, Carve::Cylinder) : m;
       if (cylinder) {
         std::printf("cylinder: %zu particles carved from the same pack, diameter %.4g m, length %.4g m; %s (%.1f s)\n",
                     spec.particles.size(), width, m.domain.size.z(), c2.summary().c_str(), secondsSince(built));

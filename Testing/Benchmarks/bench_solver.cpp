@@ -107,6 +107,10 @@ struct Options {
   std::vector<int> threads;  // empty: 1 and all cores
   double damping = 0.7;
   bool sort = false;
+  // Parallel threshold of the runs (work per step, particle-equivalents): -1 = 0 for more
+  // than one thread (always on threads), the default for one; -2 = the model's default
+  // (the serial/parallel switch as users get it).
+  long long threshold = -1;
   int repeat = 1;  // runs per configuration; the fastest is reported
   bool quick = false;
   bool sweep = false;
@@ -123,7 +127,7 @@ struct Options {
 {
   std::fprintf(stderr,
     "usage: %s [--sizes N1,N2,...] [--steps N] [--packs mono,poly,lattice,cemented] [--backend cpu,gpu]\n"
-    "          [--threads 1,2]\n"
+    "          [--threads 1,2] [--threshold W|default]\n"
     "          [--damping A] [--restitution E] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
     "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
     "       %s --stream [--threads 1,2] [--repeat R]\n"
@@ -156,6 +160,9 @@ Options parse(int argc, char** argv)
       o.damping = std::atof(argv[++i]);
     } else if (a == "--repeat" && hasValue) {
       o.repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--threshold" && hasValue) {
+      const std::string v = argv[++i];
+      o.threshold = v == "default" ? -2 : std::atoll(v.c_str());
     } else if (a == "--sort") {
       o.sort = true;
     } else if (a == "--quick") {
@@ -461,7 +468,11 @@ int runThroughput(const Options& o)
           }
           model.solver.settlingDamping = o.damping;
           model.solver.threads = threads;
-          model.solver.parallelThreshold = threads > 1 ? 0 : model.solver.parallelThreshold;
+          if (o.threshold >= 0) {
+            model.solver.parallelThreshold = o.threshold;
+          } else if (o.threshold == -1 && threads > 1) {
+            model.solver.parallelThreshold = 0;
+          }
           n = static_cast<double>(model.particles.size());
           rss1 = residentBytes();
           dem::Simulation sim(model, gpu ? dem::SolverDevice::GPU : dem::SolverDevice::CPU);
@@ -500,8 +511,10 @@ int runThroughput(const Options& o)
                     contacts, modelBytes, solverBytes, peakBytes, others);
         std::fflush(stdout);
         char line[512];
+        std::string csvPath = path; // the path says why with commas: ';' keeps the columns
+        std::replace(csvPath.begin(), csvPath.end(), ',', ';');
         std::snprintf(line, sizeof(line), "%s,%.0f,%d,%s,%ld,%.9g,%.6f,%.6g,%zu,%.1f,%.1f,%.1f,%.8g,%.2f",
-                      pack.c_str(), n, threads, path.c_str(), steps, timestep, seconds, rate,
+                      pack.c_str(), n, threads, csvPath.c_str(), steps, timestep, seconds, rate,
                       contacts, modelBytes, solverBytes, peakBytes, kinetic, others);
         csv.line(line, false);
         if (report.saturated) {

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 using namespace dem;
@@ -274,6 +276,63 @@ TEST(Determinism, OneAndTwoThreadsBitwiseIdentical)
   EXPECT_TRUE(sameBits(a.particles.angularVelocity, b.particles.angularVelocity));
   EXPECT_TRUE(sameBits(a.contacts.shearSpring, b.contacts.shearSpring));
   EXPECT_GT(sa.diagnostics().contacts, 0u);
+}
+
+// The serial/parallel switch weighs the work per step (particles + 5 x neighbour pairs +
+// 6 x bonds, Documentation/Benchmarks-Solver.md "Serial or parallel"; Solver Path names
+// it), decides again at
+// every neighbour build, and never changes a bit: a run that starts serial just below the
+// threshold and crosses it as the pack settles ends as the 1-thread run does.
+TEST(Determinism, SerialParallelSwitchWeighsTheWorkPerStep)
+{
+  // The work in the path: "CPU serial (work W, below the parallel threshold of T...".
+  auto workOf = [](const std::string& path) {
+    long long work = -1;
+    EXPECT_EQ(std::sscanf(path.c_str(), "CPU serial (work %lld,", &work), 1) << path;
+    return work;
+  };
+  Model a = settlingPack(600, 5);
+  // Stirred (undamped, +-0.1 m/s per axis): the pairs change at every neighbour build.
+  a.solver.settlingDamping = 0.0;
+  for (std::size_t i = 0; i < a.particles.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      a.particles.velocity[i][c] = 0.1 * (static_cast<double>((i * 7919 + c * 104729) % 2001) / 1000.0 - 1.0);
+    }
+  }
+  a.solver.threads = 2;
+  Model probe = a;
+  const long long work = workOf(Simulation(probe).path());
+  EXPECT_GT(work, 600 + 5 * 100); // 600 particles and their neighbour pairs (5 each)
+  EXPECT_LT(work, a.solver.parallelThreshold);
+  probe = a;
+  probe.solver.parallelThreshold = work;
+  EXPECT_EQ(Simulation(probe).path(), "CPU OpenMP (2 threads)");
+
+  // The work after 1,500 steps (serial run): a threshold between the two makes
+  // the 2-thread run change path at a neighbour build.
+  probe = a;
+  probe.solver.threads = 1;
+  Simulation settle(probe);
+  settle.advance(1500);
+  const long long workEnd = workOf(settle.path());
+  ASSERT_NE(workEnd, work) << "no change of the pair count to cross";
+  a.solver.parallelThreshold = std::max(work, workEnd);
+  Model one = a;
+  one.solver.threads = 1;
+  Simulation sa(one);
+  Simulation sb(a);
+  const std::string before = sb.path();
+  sa.advance(1500);
+  sb.advance(1500);
+  const std::string after = sb.path();
+  EXPECT_NE(before.substr(0, 10), after.substr(0, 10)) << before << " / " << after;
+  std::printf("2 threads, threshold %lld: %s -> %s\n", static_cast<long long>(a.solver.parallelThreshold),
+              before.c_str(), after.c_str());
+  EXPECT_TRUE(sameBits(one.particles.position, a.particles.position));
+  EXPECT_TRUE(sameBits(one.particles.velocity, a.particles.velocity));
+  EXPECT_TRUE(sameBits(one.particles.angularVelocity, a.particles.angularVelocity));
+  EXPECT_TRUE(sameBits(one.contacts.shearSpring, a.contacts.shearSpring));
+  EXPECT_TRUE(sameBits(one.contacts.rollingSpring, a.contacts.rollingSpring));
 }
 
 // A model copied mid-run (as a saved state is) and stepped by a new solver continues

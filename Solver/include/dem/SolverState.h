@@ -23,10 +23,12 @@ struct SolverSettings {
   double settlingDamping = 0.7;   ///< Cundall local damping alpha, [0, 1); 0 for real dynamics
   double skin = 0.2;              ///< Verlet skin as a fraction of the smallest radius, > 0
   int threads = 0;                ///< 0 = all cores; results never depend on it
-  /// Particles below which the step runs serially. Measured crossover on a 2-core machine
-  /// (Documentation/Benchmarks-Solver.md section 1, "Serial or parallel"): from about this
-  /// size two threads step bonded and unbonded packs faster than one.
-  std::int64_t parallelThreshold = 2000;
+  /// Work per step below which the step runs serially, in particle-equivalents: particles
+  /// + 5 x neighbour pairs + 6 x bonds, counted at every neighbour-list build (a loose
+  /// pack of N particles is about 3 N, a dense one about 15 N, a cemented one about 32 N).
+  /// 0: always on threads. Set from the measured crossover of one and two threads on a
+  /// 2-core machine (Documentation/Benchmarks-Solver.md section 1, "Serial or parallel").
+  std::int64_t parallelThreshold = 30000;
   /// Test-only: use requestedTimestep even above the critical timestep (to show that an
   /// unstable run is detected). Never exposed in the GUI.
   bool allowUnsafeTimestep = false;

@@ -71,8 +71,10 @@ struct ContactState {
   double smallestRadius = 0.0;       // m
   std::vector<double> inverseMass;   // 1/kg (0 for fixed particles)
   std::vector<double> inverseInertia;
-  int threads = 1;       // CPU backend: OpenMP threads when parallel
-  bool parallel = false;
+  int threads = 1;       // CPU backend: OpenMP threads offered (used when parallel)
+  bool parallel = false; // CPU backend: this list's step runs on `threads` threads
+  double work = 0.0;     // CPU backend: work per step at the last neighbour build, in
+                         // particle-equivalents (see CpuBackend::decideParallel)
 };
 
 } // namespace dem

@@ -1,5 +1,6 @@
-// RockDEM engine: the CPU backend (serial below SolverSettings::parallelThreshold
-// particles, OpenMP above; the result never depends on the number of threads).
+// RockDEM engine: the CPU backend (serial while the work per step is below
+// SolverSettings::parallelThreshold particle-equivalents, OpenMP above, decided again at
+// every neighbour build; the result never depends on the number of threads).
 //
 // One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> wall control
 // (dem::controlWalls) and wall motion -> Verlet neighbour list update when any particle
@@ -41,6 +42,7 @@ private:
   void rebuildNeighbours(bool importModelHistory);
   void rebuildWallContacts(bool carryHistory);
   bool wallsMoved() const;
+  void decideParallel();
   void buildBondLists();
   void computeBondForces(bool incrementState);
   void computeForces(bool incrementHistory, bool closingKick);
