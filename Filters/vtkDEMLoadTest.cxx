@@ -12,6 +12,7 @@
 #include "dem/Simulation.h"
 #include "dem/StageTime.h"
 #include "dem/StateFile.h"
+#include "dem/StrainRateAdvice.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkInformation.h>
@@ -250,6 +251,8 @@ struct vtkDEMLoadTest::vtkInternals
   std::uint64_t Run = 0;   ///< fingerprint of this run (input and settings), for checkpoints
   std::string Stopped;     ///< why the run was stopped (Ctrl-C, abort); empty: it runs
   std::string CheckpointError; ///< why the last checkpoint failed ("" when it succeeded)
+  vtkMTimeType AdviceTime = 0;      ///< this filter's MTime when SuggestedStrainRate was estimated ahead
+  vtkMTimeType AdviceInputTime = 0; ///< the input data's MTime then
 };
 
 void vtkDEMLoadTest::SetCheckpointFile(const char* path)
@@ -540,10 +543,41 @@ int vtkDEMLoadTest::FrameOf(double time)
 }
 
 int vtkDEMLoadTest::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->PublishTimeSteps(outputVector);
+  this->EstimateSuggestedStrainRate(
+    vtkMultiBlockDataSet::GetData(inputVector[0]->GetInformationObject(0)));
   return 1;
+}
+
+void vtkDEMLoadTest::EstimateSuggestedStrainRate(vtkMultiBlockDataSet* input)
+{
+  vtkInternals& in = *this->Internals;
+  // A stage that has run keeps the rate refined from its measured stress.
+  const bool current = in.Valid && in.BuildTime >= this->GetMTime() &&
+    (!input || input->GetMTime() == in.InputTime);
+  if (current || !input)
+  {
+    return;
+  }
+  if (in.AdviceTime == this->GetMTime() && in.AdviceInputTime == input->GetMTime())
+  {
+    return;
+  }
+  in.AdviceTime = this->GetMTime();
+  in.AdviceInputTime = input->GetMTime();
+  try
+  {
+    // Before the run (the input has data, e.g. after Apply upstream): from the peak
+    // stress estimated from the cement strengths and the Confining Stress.
+    this->SuggestedStrainRate =
+      dem::suggestedStrainRate(rockdem::MultiBlockToModel(input), this->PressSettings());
+  }
+  catch (const std::exception&)
+  {
+    this->SuggestedStrainRate = 0.0; // an input that cannot run says why in RequestData
+  }
 }
 
 int vtkDEMLoadTest::RequestUpdateExtent(
@@ -610,6 +644,7 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   }
   in.Simulation.reset(new dem::Simulation(in.Model, this->Device()));
   in.Timestep = in.Simulation->timestep();
+  this->SuggestedStrainRate = in.Simulation->measurements().suggestedStrainRate;
   if (!in.Simulation->gpuFallbackReason().empty())
   {
     const std::string fallback =
@@ -721,6 +756,16 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   else
   {
     vtkOutputWindowDisplayText((estimate.str() + "\n").c_str());
+  }
+  // A strain rate far above the suggestion is risky (a strength too high): what the atlas
+  // measured (dem::strainRateAdvice).
+  if (testing && press.mode != dem::TestMode::Isotropic)
+  {
+    const std::string advice = dem::strainRateAdvice(this->StrainRate, this->SuggestedStrainRate);
+    if (!advice.empty())
+    {
+      vtkWarningMacro(<< "DEM Load Test: " << advice);
+    }
   }
   if (!in.Simulation->timestepMessage().empty())
   {

@@ -400,6 +400,9 @@ private:
   /// Publishes the frames on every output (RequestInformation, and RequestData when the
   /// stage learns more about its frames).
   void PublishTimeSteps(vtkInformationVector* outputVector);
+  /// Before the stage has run (RequestInformation): Suggested Strain Rate from the input's
+  /// cement and the press settings (dem::suggestedStrainRate), when the input has data.
+  void EstimateSuggestedStrainRate(vtkMultiBlockDataSet* input);
   /// The frame a requested time asks for (snapped, clamped to the published frames).
   int FrameOf(double time);
   /// The press settings of this stage's properties (Mode, Axis, Confining Stress, ...).

@@ -1,6 +1,7 @@
 #include "vtkDEMPackSource.h"
 
 #include "dem/Errors.h"
+#include "dem/MemoryEstimate.h"
 #include "dem/Model.h"
 #include "dem/Pack.h"
 
@@ -58,6 +59,7 @@ vtkDEMPackSource::vtkDEMPackSource()
   , EquilibriumRatio(0.01)
   , LockedInStress(0.0)
   , LargestOverlap(0.0)
+  , EstimatedMemory(0.0)
   , Internals(new vtkInternals)
 {
   for (int k = 0; k < 3; ++k)
@@ -113,32 +115,62 @@ void vtkDEMPackSource::ResetPack()
   this->Modified();
 }
 
+dem::PackParameters vtkDEMPackSource::PackSettings() const
+{
+  dem::PackParameters params;
+  params.initialElements = this->InitialElements;
+  params.minimumSize = this->MinimumSize;
+  params.maximumSize = this->MaximumSize;
+  params.targetPorosity = this->TargetPorosity;
+  params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
+  params.fineZone.enabled = this->FineZone != 0;
+  params.fineZone.origin =
+    dem::Vec3(this->FineZoneOrigin[0], this->FineZoneOrigin[1], this->FineZoneOrigin[2]);
+  params.fineZone.size = dem::Vec3(
+    this->FineZoneDimensions[0], this->FineZoneDimensions[1], this->FineZoneDimensions[2]);
+  params.fineZone.minimumSize = this->FineZoneMinimumSize;
+  params.fineZone.maximumSize = this->FineZoneMaximumSize;
+  return params;
+}
+
+dem::Model vtkDEMPackSource::ConfiguredModel(vtkInformationVector** inputVector)
+{
+  double origin[3];
+  double size[3];
+  this->ResolveBox(inputVector, origin, size);
+  dem::Model configured;
+  this->ConfigureModel(configured, origin, size);
+  return configured;
+}
+
+int vtkDEMPackSource::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Before the pack is built: the memory of the particles it will make
+  // (dem/MemoryEstimate.h). Invalid settings give 0 here and their error in RequestData.
+  this->EstimatedMemory = 0.0;
+  try
+  {
+    const dem::Model configured = this->ConfiguredModel(inputVector);
+    const bool adds = this->Commands.find('A') != std::string::npos;
+    this->EstimatedMemory =
+      dem::estimateMemory(dem::expectedParticleCount(this->PackSettings(), configured.domain, adds));
+  }
+  catch (const std::exception&)
+  {
+  }
+  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+}
+
 int vtkDEMPackSource::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInternals& cache = *this->Internals;
   try
   {
-    double origin[3];
-    double size[3];
-    this->ResolveBox(inputVector, origin, size);
+    dem::Model configured = this->ConfiguredModel(inputVector);
 
-    dem::Model configured;
-    this->ConfigureModel(configured, origin, size);
-
-    dem::PackParameters params;
-    params.initialElements = this->InitialElements;
-    params.minimumSize = this->MinimumSize;
-    params.maximumSize = this->MaximumSize;
-    params.targetPorosity = this->TargetPorosity;
-    params.randomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
-    params.fineZone.enabled = this->FineZone != 0;
-    params.fineZone.origin =
-      dem::Vec3(this->FineZoneOrigin[0], this->FineZoneOrigin[1], this->FineZoneOrigin[2]);
-    params.fineZone.size = dem::Vec3(
-      this->FineZoneDimensions[0], this->FineZoneDimensions[1], this->FineZoneDimensions[2]);
-    params.fineZone.minimumSize = this->FineZoneMinimumSize;
-    params.fineZone.maximumSize = this->FineZoneMaximumSize;
+    const dem::PackParameters params = this->PackSettings();
     dem::validate(params, configured.domain);
     const std::size_t bad = this->Commands.find_first_not_of("AGC");
     if (bad != std::string::npos)
@@ -197,6 +229,8 @@ int vtkDEMPackSource::RequestData(
       cache.AppliedCommands.push_back(this->Commands[c]);
     }
     cache.Valid = true;
+    // Built: the memory of the particles it holds.
+    this->EstimatedMemory = dem::estimateMemory(static_cast<double>(cache.Model.particles.size()));
     this->PublishModel(cache.Model, outputVector);
     return 1;
   }
@@ -229,5 +263,6 @@ void vtkDEMPackSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EquilibriumRatio: " << this->EquilibriumRatio << "\n";
   os << indent << "LockedInStress: " << this->LockedInStress << " Pa\n";
   os << indent << "LargestOverlap: " << this->LargestOverlap << "\n";
+  os << indent << "EstimatedMemory: " << this->EstimatedMemory << " bytes\n";
   os << indent << "Commands: " << this->Commands << "\n";
 }

@@ -23,6 +23,11 @@
 #include "RockDEMFiltersModule.h" // for export macro
 #include "vtkDEMModelSourceBase.h"
 
+namespace dem
+{
+struct PackParameters;
+}
+
 class ROCKDEMFILTERS_EXPORT vtkDEMPackSource : public vtkDEMModelSourceBase
 {
 public:
@@ -103,6 +108,11 @@ public:
   vtkGetMacro(LockedInStress, double);
   vtkGetMacro(LargestOverlap, double);
 
+  /// Read-only: bytes the model will take while a stage steps it (dem::estimateMemory):
+  /// before the pack is built from the particles it will make (Initial Elements, or the
+  /// count at Target Porosity when the commands add elements), once built from its count.
+  vtkGetMacro(EstimatedMemory, double);
+
   /// Number of Add/Grow commands applied since the last reset.
   int GetNumberOfCommands() const { return static_cast<int>(this->Commands.size()); }
 
@@ -119,7 +129,13 @@ protected:
   vtkDEMPackSource();
   ~vtkDEMPackSource() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The pack parameters from the properties.
+  dem::PackParameters PackSettings() const;
+  /// An empty model with the box (resolved against the input with Fit To Input) and the
+  /// material of the properties.
+  dem::Model ConfiguredModel(vtkInformationVector** inputVector);
 
   vtkIdType InitialElements; ///< 64-bit: a count beyond 2^31 reaches the engine's memory check
   double MinimumSize;
@@ -136,6 +152,7 @@ protected:
   // Results, not parameters: setting them must not call Modified().
   double LockedInStress;
   double LargestOverlap;
+  double EstimatedMemory; ///< bytes
 
   /// Commands pressed since the last reset: 'A' (add), 'G' (grow) or 'C' (compact).
   std::string Commands;

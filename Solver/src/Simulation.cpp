@@ -1,4 +1,5 @@
 #include "dem/Simulation.h"
+#include "dem/StrainRateAdvice.h"
 
 #include "SlotLookup.h"
 #include "backends/ContactState.h"
@@ -379,11 +380,7 @@ TestMeasurements Simulation::measurements() const
   if (pressure > 0.0 && s.mode != TestMode::Off) {
     m.inertialNumber = s.strainRate * diameter * std::sqrt(rho / pressure);
   }
-  const double reference =
-    (s.mode == TestMode::Triaxial || s.mode == TestMode::Isotropic) ? s.confiningStress : pressure;
-  if (reference > 0.0 && diameter > 0.0) {
-    m.suggestedStrainRate = 1e-4 / (diameter * std::sqrt(rho / reference));
-  }
+  m.suggestedStrainRate = suggestedStrainRate(model_, pressure);
   return m;
 }
 

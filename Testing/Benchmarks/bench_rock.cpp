@@ -7,7 +7,15 @@
 //
 //   rockdem_bench_rock [--particles 10000] [--range 1.4] [--tests ucs,tension,triaxial]
 //                      [--confining 0.05,0.1,0.2] [--tensile 1e6] [--cohesion 4e6]
-//                      [--moment-contribution 1] ...
+//                      [--moment-contribution 1] [--rate-factor F] ...
+//   rockdem_bench_rock --tests rates --rate-factors 0.0625,0.25,1,4,16,64
+//     unconfined tests at those multiples of the Suggested Strain Rate on one specimen,
+//     one "rate-sweep:" line each (examples/speed_accuracy_atlas.py reads them);
+//     --inertial-target I: the suggestion at inertial number I (the engine's rule otherwise);
+//     --rate-factor F loads at F x the Suggested Strain Rate known before the test
+//     (dem::suggestedStrainRate) instead of --strain-per-step, and the UCS line is followed
+//     by a "rate:" line (rate, suggestion, inertial number at the peak, unbalanced force
+//     ratio up to it), read by examples/speed_accuracy_atlas.py
 //   rockdem_bench_rock --tests tension,brazilian: a Brazilian disc (diameter = width, thickness
 //     width / 2) carved from the same pack, its strength over the direct tensile strength.
 //   rockdem_bench_rock --tests envelopes --specimen both --sigma3 1e6,2e6,4e6 [--dump DIR]
@@ -28,6 +36,7 @@
 #include "dem/Specimen.h"
 #include "dem/Random.h"
 #include "dem/Simulation.h"
+#include "dem/StrainRateAdvice.h"
 
 #include <algorithm>
 #include <array>
@@ -67,6 +76,8 @@ struct Options {
   double softening = 0.0;       // Softening Ratio (tension softening; 0 = brittle)
   double scatter = 0.2;
   double strainPerStep = 2e-7;  // platen strain per step (sets the strain rate)
+  double rateFactor = 0.0;      // > 0: the strain rate is this x the Suggested Strain Rate (overrides --strain-per-step)
+  double inertialTarget = 0.0;  // > 0: the suggestion at this inertial number instead of the engine's target
   double safety = 0.3;
   double damping = 0.7;
   double maxStrain = 0.03;
@@ -74,6 +85,7 @@ struct Options {
   std::string tests = "ucs,tension";
   std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
   std::vector<double> sigma3{ 1e6, 2e6, 4e6 };     // Pa, --tests envelopes
+  std::vector<double> rateFactors;                 // --tests rates: x the Suggested Strain Rate
   std::string specimen = "box";                    // box, cylinder, both (--tests envelopes)
   std::string dump;                                // directory for membrane_failed.csv
   std::uint64_t seed = 1;
@@ -93,7 +105,8 @@ Options parse(int argc, char** argv)
     { "--moment-contribution", &o.beta }, { "--softening", &o.softening },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
-    { "--platen-friction", &o.platenFriction } };
+    { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
+    { "--inertial-target", &o.inertialTarget } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -104,6 +117,8 @@ Options parse(int argc, char** argv)
       o.tests = argv[++i];
     } else if (a == "--confining" && i + 1 < argc) {
       o.confining = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--rate-factors" && i + 1 < argc) {
+      o.rateFactors = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--sigma3" && i + 1 < argc) {
       o.sigma3 = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--specimen" && i + 1 < argc) {
@@ -238,6 +253,12 @@ struct TestResult {
   std::string damage;           // damageBreakdown at the end
   std::string earlyBreaks;      // failureCauses: what broke the first 10 % of the breaks at the peak
   bool peaked = false;        // the stress fell after its peak (to 70 %, triaxial 80 %) within Max Strain
+  double strainRate = 0.0;    // 1/s, of the test
+  double suggested = 0.0;     // 1/s, Suggested Strain Rate before the test (dem::suggestedStrainRate)
+  double target = 0.0;        // the inertial number the suggestion aims at
+  double timestep = 0.0;      // s
+  double inertialAtPeak = 0.0;  // inertial number at the peak sample
+  double ufrBeforePeak = 0.0;   // mean unbalanced force ratio over the samples up to the peak
 };
 
 /// Broken bonds near the platens (within two mean diameters of either end of the specimen
@@ -488,10 +509,21 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   startLoadTest(m, s);
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
+  const PeakStressEstimate estimate = estimatePeakStress(m, s);
+  r.target = o.inertialTarget > 0.0 ? o.inertialTarget
+                                    : (estimate.cemented ? CementedTargetInertialNumber : TargetInertialNumber);
+  r.suggested = o.inertialTarget > 0.0 ? strainRateForInertialNumber(m, estimate.mean, o.inertialTarget)
+                                       : suggestedStrainRate(m, s);
+  if (o.rateFactor > 0.0) {
+    s.strainRate = o.rateFactor * r.suggested;
+  }
+  r.strainRate = s.strainRate;
+  r.timestep = sim.timestep();
   startLoadTest(m, s); // again, with the rate that gives the strain per step
   const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
   Simulation run(m);
-  std::vector<double> strain, stress, lateral;
+  std::vector<double> strain, stress, lateral, ufr;
+  std::size_t peakSample = 0;
   BreakTracker breaks(m);
   bool fallen = false;
   while (m.test.stage != TestStage::Done && !fallen) {
@@ -514,6 +546,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
                    static_cast<long long>(r.steps), e, sigma, r.peak, countBonds(m.bonds).broken, secondsSince(start));
     }
     lateral.push_back(0.5 * (me.strain[0] + me.strain[1]));
+    ufr.push_back(run.diagnostics().unbalancedForceRatio);
     if (sigma > r.peak) {
       r.peak = sigma;
       r.peakStrain = e;
@@ -522,6 +555,8 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       for (std::size_t k = 0; k < m.bonds.size(); ++k) {
         r.softeningAtPeak += !m.bonds.broken(k) && m.bonds.damage[k] > 0.0;
       }
+      r.inertialAtPeak = me.inertialNumber;
+      peakSample = ufr.size();
     }
     if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
@@ -532,6 +567,9 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
   }
   r.peaked = fallen;
+  for (std::size_t i = 0; i < peakSample; ++i) {
+    r.ufrBeforePeak += ufr[i] / static_cast<double>(peakSample);
+  }
   // Elastic constants between 10 % and 50 % of the peak, before it.
   std::vector<double> x, y, l;
   for (std::size_t i = 0; i < stress.size(); ++i) {
@@ -728,6 +766,10 @@ int main(int argc, char** argv)
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
                 u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
+    std::printf("  rate: strain rate %.6g 1/s = %.4g x Suggested Strain Rate %.6g 1/s (timestep %.4g s); "
+                "inertial number at the peak %.4g; mean unbalanced force ratio up to the peak %.4g\n",
+                u.strainRate, u.suggested > 0.0 ? u.strainRate / u.suggested : 0.0, u.suggested, u.timestep,
+                u.inertialAtPeak, u.ufrBeforePeak);
     std::printf("  broken at the peak: %zu (%.1f %% of bonds); softening then (intact, damage > 0): %zu (%.1f %%)\n  %s\n  %s\n",
                 u.brokenAtPeak, 100.0 * u.brokenAtPeak / cemented.bonds, u.softeningAtPeak,
                 100.0 * u.softeningAtPeak / cemented.bonds, u.damage.c_str(), u.earlyBreaks.c_str());
@@ -737,6 +779,20 @@ int main(int argc, char** argv)
     std::printf("  DFN: %zu discs, largest radius %.4g m (%.0f %% of the width), %.1f %% of broken bonds in discs\n  %s\n",
                 u.discs, u.largestDisc, 100.0 * u.largestDisc / width, 100.0 * u.discShare, u.dfn.c_str());
     std::fflush(stdout);
+  }
+  if (wants(o, "rates")) {
+    // The strain-rate sweep of Documentation/SpeedAccuracy.md: one unconfined test per
+    // factor on the same specimen; the peak also with all its digits (thread agreement).
+    for (double f : o.rateFactors) {
+      Options at = o;
+      at.rateFactor = f;
+      const TestResult u = runTest(m, TestMode::Compression, 0.0, at, false);
+      std::printf("rate-sweep: factor %g strain rate %.6g 1/s suggested %.6g 1/s target %g timestep %.6g s UCS %.17g Pa "
+                  "strain at peak %.6g E %.6g Pa inertial %.6g ufr %.6g steps %lld seconds %.3f peaked %d\n",
+                  f, u.strainRate, u.suggested, u.target, u.timestep, u.peak, u.peakStrain, u.E, u.inertialAtPeak,
+                  u.ufrBeforePeak, static_cast<long long>(u.steps), u.seconds, u.peaked ? 1 : 0);
+      std::fflush(stdout);
+    }
   }
   double tensile = 0.0;
   if (wants(o, "tension")) {

@@ -20,6 +20,11 @@ c = Checks()
 pack = DEMPackSource(InitialElements=1500, MinimumSize=0.002, MaximumSize=0.004,
                      XDimension=0.08, YDimension=0.08, ZDimension=0.08,
                      TargetPorosity=0.35, RandomSeed=3)
+# Estimated Memory before the pack is built: 1500 particles x (180 + 550) B
+# (Documentation/SpeedAccuracy.md "Memory"; measured in Testing/Solver/TestMemoryEstimate.cpp).
+pack.UpdatePipelineInformation()
+c.check(rockdem.read_only(pack, "EstimatedMemory") == 1500 * 730.0,
+        "Estimated Memory before the build: %.6g B" % pack.EstimatedMemory)
 pack.UpdatePipeline()
 n0 = rockdem.read_only(pack, "NumberOfElements")
 p0 = rockdem.read_only(pack, "CurrentPorosity")
@@ -38,8 +43,13 @@ independent = 1.0 - solid / (0.08 * 0.08 * top)
 c.check(abs(independent - p0) < 1e-12, "porosity equals the independent value %.6f" % independent)
 
 pack.InvokeCommand("AddElements")
+pack.UpdatePipelineInformation()
+ahead = rockdem.read_only(pack, "EstimatedMemory")
 pack.UpdatePipeline()
 n1 = rockdem.read_only(pack, "NumberOfElements")
+c.check(ahead >= n1 * 730.0 and rockdem.read_only(pack, "EstimatedMemory") == n1 * 730.0,
+        "Add Elements: Estimated Memory %.4g B ahead (to Target Porosity, an upper bound), %.4g B for the %d made"
+        % (ahead, pack.EstimatedMemory, n1))
 p1 = rockdem.read_only(pack, "CurrentPorosity")
 report = rockdem.read_only(pack, "LastMessage")
 print("Add Elements:", report)

@@ -9,7 +9,8 @@ Documentation/LoadTest.md. On a small grown specimen without gravity:
     it as CSV with a header, and History File writes it too;
 (d) Mode Off restores the six walls at the box;
 (e) a bad setting is named in Status and gives no output;
-(f) cemented specimen, unconfined compression: the axial stress peaks and bonds break.
+(f) cemented specimen, unconfined compression: the axial stress peaks and bonds break;
+    Suggested Strain Rate is known before the run.
 """
 import csv
 import shutil
@@ -205,9 +206,21 @@ print("elapsed %.1f s" % (time.time() - T0))
 # (f) cemented specimen, unconfined compression through the pipeline (a short run: the
 # bonds shorten the timestep; the full test to failure is Testing/Solver/TestLoadTest.cpp).
 cement = DEMCement(Input=iso, BondModulus=1e8, TensileStrength=1e6, Cohesion=2e6)
+# The input has run (as after Apply on DEM Cement in the GUI) before the stage is made: the
+# stage's information pass then sees the cemented model.
+cement.UpdatePipeline()
 press = DEMLoadTest(Input=cement, Gravity=[0, 0, 0], Mode="Compression", StrainRate=1.0, MaxStrain=0.01,
                     FrameInterval=0.00025, NumberOfFrames=2, SampleInterval=50)
+# Suggested Strain Rate before the run (the input has data; the stage has not stepped):
+# inertial number 2.5e-5 (cemented) at the estimated peak, UCS ~ 0.35 x max(Tensile,
+# Cohesion) x bond/grain area = 0.7e6 Pa: about 2.5e-5 / (1.9e-3 m x sqrt(2650 / 2.3e5)) = 0.12 1/s
+# (Documentation/SpeedAccuracy.md).
+press.UpdatePipelineInformation()
+ahead = rockdem.read_only(press, "SuggestedStrainRate")
+c.check(0.05 < ahead < 0.3, "Suggested Strain Rate before the run: %.4g 1/s (expected about 0.12)" % ahead)
 cols, names = table_of(press, 0.0005)
+c.check(rockdem.read_only(press, "SuggestedStrainRate") >= ahead * (1 - 1e-9),
+        "after two frames it is refined, never lower: %.4g 1/s" % press.SuggestedStrainRate)
 axial = cols["Axial Stress (Pa)"]
 c.check(rockdem.read_only(press, "Bonds") > 0, "the compressed specimen is cemented (%d bonds)" % press.Bonds)
 c.check(press.Stage == "shear" and len(axial) > 1, "Compression: stage shear, %d history rows" % len(axial))

@@ -94,7 +94,7 @@ struct TestMeasurements {
   double deviatorStress = 0.0; ///< Pa, axial - lateral
   double meanStress = 0.0;     ///< Pa
   double inertialNumber = 0.0; ///< -, strain rate x mean diameter x sqrt(density / mean stress)
-  double suggestedStrainRate = 0.0; ///< 1/s, the rate giving an inertial number of 1e-4
+  double suggestedStrainRate = 0.0; ///< 1/s, dem::suggestedStrainRate (dem/StrainRateAdvice.h): inertial number 1e-4 at the estimated peak
 };
 
 /// The Brazilian (indirect tensile) stress at the centre of a disc of the given diameter
