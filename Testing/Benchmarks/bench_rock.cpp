@@ -490,6 +490,38 @@ private:
   std::vector<std::uint8_t> seen_, long_;
 };
 
+/// DEM Fractures To DFN at its default settings on the model as it is: the disc count, the
+/// largest disc radius (m), the share of the broken bonds in discs, and the report with
+/// one line per disc (dip, azimuth, radius, centre, cracks, planarity, fill).
+struct DfnReading {
+  std::size_t discs = 0;
+  double largestDisc = 0.0; // m
+  double discShare = 0.0;   // broken bonds in discs / broken bonds
+  std::string text;
+};
+
+DfnReading readDfn(const Model& m)
+{
+  const FractureNetwork dfn = extractFractures(m, FractureParameters{});
+  DfnReading r;
+  r.discs = dfn.discs.size();
+  for (const FractureDisc& d : dfn.discs) {
+    r.largestDisc = std::max(r.largestDisc, d.radius);
+  }
+  r.discShare = dfn.report.total.brokenBonds
+    ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
+  r.text = dfn.report.summary();
+  for (const FractureDisc& d : dfn.discs) {
+    char line[260];
+    const Vec3 c = d.center - m.domain.origin;
+    std::snprintf(line, sizeof line,
+      "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
+      fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
+    r.text += line;
+  }
+  return r;
+}
+
 /// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
 /// tension), the shear stage's max strain, or the test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
@@ -589,23 +621,11 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       breaks.summary(r.brokenAtPeak);
     r.damage = damageBreakdown(start0, m);
     r.nearPlatens = platenShare(m, o.profile);
-    const FractureNetwork dfn = extractFractures(m, FractureParameters{});
-    r.discs = dfn.discs.size();
-    for (const FractureDisc& d : dfn.discs) {
-      r.largestDisc = std::max(r.largestDisc, d.radius);
-    }
-    r.discShare = dfn.report.total.brokenBonds
-      ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
-    r.dfn = dfn.report.summary();
-    for (const FractureDisc& d : dfn.discs) {
-      char line[260];
-      const Vec3 c = d.center - m.domain.origin;
-      std::snprintf(line, sizeof line,
-        "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
-        fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
-      r.dfn += line;
-    }
-    r.dfn += "\n  " + randomDamageControl(m);
+    const DfnReading dfn = readDfn(m);
+    r.discs = dfn.discs;
+    r.largestDisc = dfn.largestDisc;
+    r.discShare = dfn.discShare;
+    r.dfn = dfn.text + "\n  " + randomDamageControl(m);
   }
   r.seconds = secondsSince(start);
   if (failed) {
@@ -680,22 +700,11 @@ BrazilianRun runBrazilian(Model m, const Options& o)
     }
   }
   r.centralBand = r.broken ? static_cast<double>(band) / r.broken : 0.0;
-  const FractureNetwork dfn = extractFractures(m, FractureParameters{});
-  r.discs = dfn.discs.size();
-  for (const FractureDisc& d : dfn.discs) {
-    r.largestDisc = std::max(r.largestDisc, d.radius);
-  }
-  r.discShare = dfn.report.total.brokenBonds
-    ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
-  r.dfn = dfn.report.summary();
-  for (const FractureDisc& d : dfn.discs) {
-    char line[260];
-    const Vec3 c = d.center - m.domain.origin;
-    std::snprintf(line, sizeof line,
-      "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
-      fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
-    r.dfn += line;
-  }
+  const DfnReading dfn = readDfn(m);
+  r.discs = dfn.discs;
+  r.largestDisc = dfn.largestDisc;
+  r.discShare = dfn.discShare;
+  r.dfn = dfn.text;
   r.seconds = secondsSince(start);
   return r;
 }
