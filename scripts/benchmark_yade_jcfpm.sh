@@ -7,7 +7,8 @@
 #
 #   scripts/benchmark_yade_jcfpm.sh [--particles 2000] [--steps 8000] [--strain-per-step 5e-7]
 #        [--repeat 1] [--threads "1 2"] [--range 1.4] [--modulus 1e10] [--tensile 1e6]
-#        [--cohesion 4e6] [--friction-angle 30] [--damping 0.7] [--chart FILE.png]
+#        [--cohesion 4e6] [--friction-angle 30] [--damping 0.7] [--contact-law Hertz-Mindlin]
+#        [--chart FILE.png]
 #        [--keep DIR] [--specimen FILE.csv]
 #
 # 1. Specimen (RockDEM, pvpython): DEM Pack Source + Compact Elements, --particles grains
@@ -40,6 +41,7 @@ TENSILE=1e6
 COHESION=4e6
 FRICTION_ANGLE=30
 DAMPING=0.7
+CONTACT_LAW=Hertz-Mindlin
 CHART=""
 KEEP=""
 SPECIMEN=""
@@ -56,10 +58,11 @@ while [ $# -gt 0 ]; do
     --cohesion) COHESION="$2"; shift 2 ;;
     --friction-angle) FRICTION_ANGLE="$2"; shift 2 ;;
     --damping) DAMPING="$2"; shift 2 ;;
+    --contact-law) CONTACT_LAW="$2"; shift 2 ;;
     --chart) CHART="$2"; shift 2 ;;
     --keep) KEEP="$2"; shift 2 ;;
     --specimen) SPECIMEN="$2"; shift 2 ;;
-    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
     *) echo "unknown argument: $1" >&2; exit 2 ;;
   esac
 done
@@ -99,7 +102,7 @@ cat > "$WORK/params.json" <<EOF
  "bond_modulus": $MODULUS, "bond_stiffness_ratio": 0.4, "tensile_strength": $TENSILE,
  "cohesion": $COHESION, "friction_angle": $FRICTION_ANGLE, "bond_range": $RANGE,
  "moment_contribution": 0.0, "damping": $DAMPING, "strain_per_step": $SPS, "steps": $STEPS,
- "sample": 100, "timestep_safety": 0.3}
+ "sample": 100, "timestep_safety": 0.3, "contact_law": "$CONTACT_LAW"}
 EOF
 "$PVPYTHON" "$ROOT/scripts/yade_rockdem.py" probe "$WORK/specimen.csv" "$WORK/params.json"
 

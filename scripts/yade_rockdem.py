@@ -15,7 +15,7 @@ run: the user's path. CSV Reader -> Table To Points -> DEM Model From Points (Fi
   E, nu, density, grain friction of PARAMS; Restitution 1: no contact dashpot, as JCFpm
   has none) -> DEM Cement (PARAMS; Gap Tolerance 0, so that the bonds are exactly the
   pairs within Bond Range x (rA + rB), JCFpm's interactionDetectionFactor rule; Strength
-  Scatter 0) -> DEM Load Test, Mode Compression along Z, Requested Timestep dt,
+  Scatter 0) -> DEM Load Test (Contact Law of PARAMS), Mode Compression along Z, Requested Timestep dt,
   Strain Rate = strain_per_step / dt, Settling Damping = damping, Gravity 0, Threads T,
   steps steps in 10 frames, History every sample steps. Timed: the UpdatePipeline calls
   of the 10 frames (the compression stage's set-up included; DEM Cement not). Prints
@@ -111,7 +111,7 @@ def probe():
     with open(a.params) as f:
         p = json.load(f)
     proxies, cement, n = cemented(p)
-    test = DEMLoadTest(Input=cement, Mode="Off", Gravity=[0.0, 0.0, 0.0],  # noqa: F821
+    test = DEMLoadTest(Input=cement, Mode="Off", Gravity=[0.0, 0.0, 0.0], ContactLaw=p["contact_law"],  # noqa: F821
                        TimestepSafety=p["timestep_safety"], NumberOfFrames=1, FrameInterval=0)
     test.UpdatePipeline(list(test.TimestepValues)[-1])
     used = rockdem.read_only(test, "Timestep")
@@ -147,7 +147,7 @@ def run():
                            RequestedTimestep=dt, TimestepSafety=p["timestep_safety"],
                            SettlingDamping=p["damping"], Threads=a.threads, PlatenFriction=0.0,
                            FrameInterval=steps // frames * dt, NumberOfFrames=frames,
-                           SampleInterval=p["sample"])
+                           SampleInterval=p["sample"], ContactLaw=p["contact_law"])
         times = list(test.TimestepValues)
         seconds = 0.0
         for t in times:
