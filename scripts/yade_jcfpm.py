@@ -36,6 +36,7 @@ writes HISTORY (step, axial_strain, axial_stress_pa, broken_tension, broken_shea
 """
 import json
 import math
+import os
 import sys
 import time
 
@@ -142,7 +143,6 @@ with open(history + ".tmp", "w") as f:
     f.write("step,axial_strain,axial_stress_pa,broken_tension,broken_shear\n")
     for r in rows:
         f.write("%d,%.9g,%.9g,%d,%d\n" % r)
-import os  # noqa: E402
 os.replace(history + ".tmp", history)
 sys.stdout.flush()
 os._exit(0)
