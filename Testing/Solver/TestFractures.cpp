@@ -878,3 +878,45 @@ TEST(SeedFractures, SeededSpecimenInTensionFailsAlongTheSeededPlane)
     intact.test.peakStress, m.test.peakStress, 100.0 * m.test.peakStress / intact.test.peakStress);
   EXPECT_LT(m.test.peakStress, 0.8 * intact.test.peakStress);
 }
+
+// A 2D section (XY, slab along Z): a fracture is a line in the plane, extruded through the
+// slab. Cracks exactly on a line at azimuth 20 deg from North (Y), in the slab's
+// mid-plane, come back as one disc with the exact answer: Dip 90 deg (the plane holds the
+// line and the section's normal Z), its strike along the line, its normal across it, and
+// Radius = half the trace length sqrt(12 l2) = s sqrt(n^2 - 1) of n cracks s apart.
+TEST(Fractures, Section2DCracksOnALineAreOneVerticalDiscAlongTheLine)
+{
+  Model m;
+  m.domain.size = Vec3(0.03, 0.03, 0.001);
+  m.domain.section2D = true;
+  const Vec3 centre(0.015, 0.015, 0.0005);
+  const double az = 20.0 * kPi / 180.0;
+  const Vec3 along(std::sin(az), std::cos(az), 0.0); // the trace, clockwise from North
+  const Vec3 across(std::cos(az), -std::sin(az), 0.0);
+  const int n = 25;
+  const double s = 0.0008; // m between cracks
+  const double r = 0.0003; // m, particle radius
+  for (int k = 0; k < n; ++k) {
+    const Vec3 p = centre + (k - 0.5 * (n - 1)) * s * along;
+    m.particles.append(p - r * across, r, 2 * k);
+    m.particles.append(p + r * across, r, 2 * k + 1);
+    m.bonds.append(2 * k, 2 * k + 1, r, 1e9, 1e9, 1e5, 1e5, 0.5);
+    m.bonds.markBroken(m.bonds.size() - 1, BondFailure::Tension, 0.0, p, across);
+  }
+  const FractureNetwork dfn = extractFractures(m, FractureParameters());
+  ASSERT_EQ(dfn.discs.size(), 1u) << dfn.report.summary();
+  const FractureDisc& d = dfn.discs.front();
+  EXPECT_EQ(d.crackCount(), static_cast<std::size_t>(n));
+  EXPECT_DOUBLE_EQ(d.dip, 90.0);
+  EXPECT_NEAR(std::abs(d.strike.dot(along)), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(d.normal.dot(across)), 1.0, 1e-12);
+  EXPECT_NEAR(d.azimuth, 110.0, 1e-9); // the dip direction: across the trace, in [0, 180)
+  EXPECT_NEAR(d.planarity, 1.0, 1e-12);
+  EXPECT_NEAR(d.radius, 0.5 * s * std::sqrt(n * n - 1.0), 1e-12);
+  EXPECT_NEAR(d.area, s * std::sqrt(n * n - 1.0) * 0.001, 1e-15);
+  EXPECT_NEAR((d.center - centre).norm(), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(d.fill, 1.0); // every bond crossing the trace is broken
+  // Its polygon: the trace x the slab, a vertical rectangle.
+  ASSERT_EQ(d.polygon.size(), 4u);
+  EXPECT_NEAR(std::abs(d.polygon[2].z() - d.polygon[0].z()), 0.001, 1e-15);
+}

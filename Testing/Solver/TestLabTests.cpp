@@ -4,6 +4,7 @@
 #include "Specimens.h"
 
 #include "dem/Bonds.h"
+#include "dem/BrazilianSolution.h"
 #include "dem/Errors.h"
 #include "dem/Fractures.h"
 #include "dem/ParticleStress.h"
@@ -45,12 +46,12 @@ CementParameters labCement()
   return c;
 }
 
-/// A cemented disc: carved (Shape Disc, axis Z) out of a dense pack and cemented with the
-/// lab cement.
-Model cementedDisc(bool twoD)
+/// A cemented disc: carved (Shape Disc, axis Z) out of a dense pack (pack seed `seed`)
+/// and cemented with the lab cement.
+Model cementedDisc(bool twoD, std::uint64_t seed)
 {
-  Model m = twoD ? densePack(true, Vec3(0.03, 0.03, 0.001), 1400, 0.0003, 0.0005, 11)
-                 : densePack(false, Vec3(0.016, 0.016, 0.008), 4000, 0.0003, 0.0004, 12);
+  Model m = twoD ? densePack(true, Vec3(0.03, 0.03, 0.001), 1400, 0.0003, 0.0005, seed)
+                 : densePack(false, Vec3(0.016, 0.016, 0.008), 4000, 0.0003, 0.0004, seed);
   SpecimenSettings disc;
   disc.shape = SpecimenShape::Disc;
   disc.axis = 2;
@@ -62,14 +63,16 @@ Model cementedDisc(bool twoD)
   return m;
 }
 
-/// The mean of the particle stresses of the particles whose centres lie within `radius`
-/// (m, in the XY plane) of `centre`, as a continuum stress: sum V_p sigma_p over the
-/// region's particles divided by their volume over the specimen's solid fraction.
+/// The continuum stress over a region through the whole thickness: sum V_p sigma_p over
+/// the particles whose centres lie within `radius` (m, in the XY plane) of `centre`,
+/// divided by the region's volume pi radius^2 t, t the thickness of 2P/(pi D t). Summed
+/// over all the particles (radius D/2) this is the Love-Weber stress of the whole disc,
+/// fixed by the platen loads alone (its sigma_yy is 2 x 2P/(pi D t)).
 StressTensor regionStress(const Model& m, const std::vector<StressTensor>& stress, const Vec3& centre,
-                          double radius, double solidFraction)
+                          double radius, double thickness, std::size_t* grains = nullptr)
 {
   StressTensor sum{};
-  double volume = 0.0;
+  std::size_t count = 0;
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     const Vec3 r = m.particles.position[i] - centre;
     if (std::hypot(r.x(), r.y()) <= radius) {
@@ -77,19 +80,24 @@ StressTensor regionStress(const Model& m, const std::vector<StressTensor>& stres
       for (int k = 0; k < 6; ++k) {
         sum[k] += v * stress[i][k];
       }
-      volume += v;
+      ++count;
     }
   }
   for (double& s : sum) {
-    s *= solidFraction / volume;
+    s /= kPi * radius * radius * thickness;
+  }
+  if (grains) {
+    *grains = count;
   }
   return sum;
 }
 
 struct BrazilianResult {
-  double elastic = 0.0;     ///< Pa, 2P/(pi D t) at the last sample before the first break
-  double horizontal = 0.0;  ///< Pa, mean horizontal stress in the central region then (compression positive)
-  double vertical = 0.0;    ///< Pa, mean vertical stress there
+  std::size_t rows = 0;     ///< history rows in the elastic window (loading, the disc intact away from the platens)
+  std::size_t grains = 0;   ///< particles in the central region
+  double elastic = 0.0;     ///< Pa, 2P/(pi D t) at the end of the window
+  double tension = 0.0;     ///< -, central sigma_xx over its elastic mean, load-weighted over the window
+  double compression = 0.0; ///< -, the same for sigma_yy
   double strength = 0.0;    ///< Pa, Peak Stress (Brazilian Strength)
   double centralBand = 0.0; ///< -, share of the broken bonds within D/6 of the loaded diameter
   std::size_t broken = 0;
@@ -99,8 +107,13 @@ struct BrazilianResult {
   double normalAcross = 0.0;    ///< |normal . X| of that disc (X: across the load, in the disc plane)
 };
 
-/// Squeezes the disc along Y until its load has fallen below half the peak (or Max Strain).
-BrazilianResult brazilian(Model m, double strainRate)
+/// Squeezes the disc along Y. The elastic window: every history row while the disc is
+/// loaded and intact away from its platens (no bond broken farther than D/8 from both
+/// platens; the grains a flat platen presses on may crush, which the point-load solution
+/// does not describe). `toFailure`: then on until the disc has split (a bond broken away
+/// from the platens and the load fallen below `residual` x its peak) or Max Strain; else
+/// stop when the window closes.
+BrazilianResult brazilian(Model m, double strainRate, bool toFailure, double residual = 0.5)
 {
   LoadTestSettings s;
   s.mode = TestMode::Brazilian;
@@ -110,40 +123,74 @@ BrazilianResult brazilian(Model m, double strainRate)
   s.sampleInterval = 50;
   startLoadTest(m, s);
   const std::array<double, 2> disc = brazilianDisc(m);
+  const double D = disc[0];
+  const double t = disc[1];
   Vec3 centre = Vec3::Zero(); // the disc's centre: the mean of the particle centres
-  double solid = 0.0;
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     centre += m.particles.position[i];
-    solid += particleVolume(m.domain, m.particles.radius[i]);
   }
   centre /= static_cast<double>(m.particles.size());
-  const double solidFraction = solid / (0.25 * kPi * disc[0] * disc[0] * disc[1]);
+  // A bond broken away from the platens: farther than D/8 from both.
+  auto brokeAwayFromPlatens = [&]() {
+    for (std::size_t b = 0; b < m.bonds.size(); ++b) {
+      const double y = m.bonds.failurePosition[b].y();
+      if (m.bonds.broken(b) && y > m.walls[2].position + D / 8.0 && y < m.walls[3].position - D / 8.0) {
+        return true;
+      }
+    }
+    return false;
+  };
   Simulation sim(m);
   BrazilianResult r;
+  double measuredX = 0.0; // sums over the window: the central region's stress ...
+  double measuredY = 0.0;
+  double elasticX = 0.0;  // ... and the elastic mean over the same region
+  double elasticY = 0.0;
+  bool intact = true;
   while (m.test.stage != TestStage::Done) {
     sim.advance(s.sampleInterval);
     const TestMeasurements me = sim.measurements();
-    if (countBonds(m.bonds).broken == 0) {
-      // Before the first break: the central region's stress against the elastic solution.
+    intact = intact && !brokeAwayFromPlatens();
+    if (intact && me.axialStress > 0.0) {
+      // The central region (radius D/8) against the elastic mean over it; sums over the
+      // rows weight them by the load (the first rows, before the platens have seated, carry little).
+      const double load = me.axialStress * kPi * D * t / 2.0; // P from 2P/(pi D t)
       const StressTensor sigma =
-        regionStress(m, particleStresses(m, sim.interactionForces()), centre, disc[0] / 8.0, solidFraction);
+        regionStress(m, particleStresses(m, sim.interactionForces()), centre, D / 8.0, t, &r.grains);
+      const StressTensor elastic = brazilianElasticMean(D / 8.0, load, D, t);
+      measuredX += sigma[0];
+      measuredY += sigma[1];
+      elasticX += elastic[0];
+      elasticY += elastic[1];
       r.elastic = me.axialStress;
-      r.horizontal = sigma[0];
-      r.vertical = sigma[1];
+      ++r.rows;
     }
-    if (m.test.peakStress > 0.0 && me.axialStress < 0.5 * m.test.peakStress) {
+    if (!intact && (!toFailure || (m.test.peakStress > 0.0 && me.axialStress < residual * m.test.peakStress))) {
       break;
     }
   }
+  r.tension = elasticX != 0.0 ? measuredX / elasticX : 0.0;
+  r.compression = elasticY != 0.0 ? measuredY / elasticY : 0.0;
   r.strength = m.test.peakStress;
   std::size_t band = 0;
   for (std::size_t b = 0; b < m.bonds.size(); ++b) {
     if (m.bonds.broken(b)) {
       ++r.broken;
-      band += std::abs(m.bonds.failurePosition[b].x() - centre.x()) <= disc[0] / 6.0 ? 1 : 0;
+      band += std::abs(m.bonds.failurePosition[b].x() - centre.x()) <= D / 6.0 ? 1 : 0;
     }
   }
   r.centralBand = r.broken ? static_cast<double>(band) / static_cast<double>(r.broken) : 0.0;
+  std::printf("Brazilian %s: D %.4g m, t %.4g m, %zu particles (%zu within D/8 of the centre); over %zu rows "
+              "before the first break away from the platens (2P/(pi D t) = %.4g Pa at the last), central "
+              "sigma_xx / its elastic mean %.3f, sigma_yy / its elastic mean %.3f; ",
+              m.domain.section2D ? "2D disc" : "3D short cylinder", D, t, m.particles.size(), r.grains, r.rows,
+              r.elastic, r.tension, r.compression);
+  if (!toFailure) {
+    std::printf("stopped there\n");
+    return r;
+  }
+  std::printf("Brazilian Strength %.4g Pa; %zu broken bonds, %.2f within D/6 of the loaded diameter\n", r.strength,
+              r.broken, r.centralBand);
   // The split as DEM Fractures To DFN sees it: the disc with the most cracks.
   const FractureNetwork dfn = extractFractures(m, FractureParameters());
   r.discs = dfn.discs.size();
@@ -158,60 +205,66 @@ BrazilianResult brazilian(Model m, double strainRate)
     r.strikeAlongLoad = std::abs(largest->strike.y());
     r.normalAcross = std::abs(largest->normal.x());
   }
-  std::printf("DFN: %zu disc(s); the largest (%zu cracks): dip %.1f deg, |strike . Y| %.3f, |normal . X| %.3f\n",
-              r.discs, largest ? largest->bonds.size() : std::size_t(0), r.dip, r.strikeAlongLoad, r.normalAcross);
-  std::printf("Brazilian %s: D %.4g m, t %.4g m, %zu particles; before the first break 2P/(pi D t) = %.4g Pa, "
-              "central sigma_xx = %.4g Pa (ratio %.3f), sigma_yy = %.4g Pa (ratio %.3f, elastic 3); "
-              "Brazilian Strength %.4g Pa; %zu broken bonds, %.2f within D/6 of the loaded diameter\n",
-              m.domain.section2D ? "2D disc" : "3D short cylinder", disc[0], disc[1], m.particles.size(),
-              r.elastic, r.horizontal, -r.horizontal / r.elastic, r.vertical, r.vertical / r.elastic,
-              r.strength, r.broken, r.centralBand);
+  std::printf("DFN: %zu disc(s); the largest (%zu cracks): dip %.1f deg, |strike . Y| %.3f, |normal . X| %.3f\n%s\n",
+              r.discs, largest ? largest->bonds.size() : std::size_t(0), r.dip, r.strikeAlongLoad, r.normalAcross,
+              dfn.report.summary().c_str());
   return r;
 }
 
-/// The Brazilian test of the carved disc: the central stress state before the first break
-/// and the split. `elasticBar`: the bar on the central tension against the elastic
-/// solution, or 0 to check only its sign (see the 3D test).
-void expectBrazilianAgreesWithTheElasticSolution(bool twoD, double elasticBar)
+/// Hondros (1959) / Timoshenko and Goodier: at the centre sigma_xx = -2P/(pi D t)
+/// (tension), sigma_yy = 6P/(pi D t); over the central disc of radius D/8 the elastic
+/// means are 0.9375 and 2.9375 times 2P/(pi D t) (dem/BrazilianSolution.h). Bar: 15 %
+/// (issue 13) on the tension.
+void expectCentralStressIsElastic(const BrazilianResult& r)
 {
-  // Strain rates: the fastest at which the central stress no longer depends on the rate
-  // by more than a few per cent (2D: the same ratio within 0.5 % from 0.2 to 4 /s).
-  const BrazilianResult r = brazilian(cementedDisc(twoD), twoD ? 4.0 : 8.0);
+  ASSERT_GT(r.rows, 0u);
   ASSERT_GT(r.elastic, 0.0);
-  // Hondros (1959) / Timoshenko and Goodier: at the centre sigma_xx = -2P/(pi D t)
-  // (tension), sigma_yy = 6P/(pi D t); averaged over the central disc of radius D/8 the
-  // tension is 6 % lower and the compression 2 % lower.
-  if (elasticBar > 0.0) {
-    EXPECT_NEAR(-r.horizontal / r.elastic, 1.0, elasticBar);
-  }
-  EXPECT_LT(r.horizontal, 0.0) << "the centre is in tension across the loaded diameter";
-  EXPECT_GT(r.vertical, 0.0);
+  EXPECT_NEAR(r.tension, 1.0, 0.15);
+  EXPECT_GT(r.compression, 0.0);
+}
+
+/// The split: the band within D/6 of the loaded diameter (a third of the diameter) holds
+/// most of the broken bonds.
+void expectSplitAlongTheLoadedDiameter(const BrazilianResult& r)
+{
   EXPECT_GT(r.strength, r.elastic);
-  // It splits along the loaded diameter: the band within D/6 of it (a third of the
-  // diameter) holds most of the broken bonds.
   EXPECT_GT(r.broken, 0u);
   EXPECT_GT(r.centralBand, 0.5);
-  // What DEM Fractures To DFN makes of the split is printed, not asserted: with its
-  // default parameters it does not yet export the split as one vertical disc along Y
-  // (Documentation/Press.md, "Brazilian test": 3D one disc of dip 13 deg, 2D none).
 }
 
 } // namespace
 
+// Strain rates: the fastest at which the central stress no longer depends on the rate by
+// more than a few per cent (Documentation/Press.md, "Check against the elastic solution").
 TEST(LabTests, BrazilianDisc2DCentralStressIsTheElasticSolution)
 {
-  expectBrazilianAgreesWithTheElasticSolution(true, 0.15); // bar: 15 % (issue 13)
+  // The 2D disc first crushes the grains under its platens (a load peak of 29 kPa, then a
+  // drop to a quarter of it), reloads, and splits at 80 kPa: it runs until the load has
+  // fallen below a tenth of its peak, so that the split is there.
+  const BrazilianResult r = brazilian(cementedDisc(true, 11), 4.0, true, 0.1);
+  expectCentralStressIsElastic(r);
+  expectSplitAlongTheLoadedDiameter(r);
+  // DEM Fractures To DFN (default parameters) exports the split: in a 2D section a
+  // fracture is a line in the plane extruded through the slab, so a vertical plane (dip
+  // 90 deg) whose strike is along the loading axis Y.
+  ASSERT_GE(r.discs, 1u);
+  EXPECT_GT(r.dip, 80.0);
+  EXPECT_GT(r.strikeAlongLoad, std::cos(15.0 * kPi / 180.0));
 }
 
-TEST(LabTests, BrazilianShortCylinder3DTensionAtTheCentreAndSplitAlongTheLoadedDiameter)
+// The 3D short cylinder on two realisations of its 1,900-grain pack (pack seeds 13 and
+// 17): the check must not depend on one pack. Over eight realisations (seeds 12-19) the
+// ratio is 0.86-1.07 (Documentation/Press.md, "Check against the elastic solution").
+TEST(LabTests, BrazilianShortCylinder3DCentralStressIsTheElasticSolutionAndSplitsAlongTheLoadedDiameter)
 {
-  // The 3D short cylinder does not meet the 15 % bar of issue 13 robustly: its central
-  // tension over the elastic solution depends on the realisation of its 1,900-grain pack,
-  // 0.861 (2 % compaction stages), 0.822 (5 % stages), 0.670 (5 % stages stepped in
-  // Morton order: the same recipe, another summation order). Documentation/Press.md,
-  // "Brazilian test". Checked here: tension at the centre, compression along the load,
-  // the split along the loaded diameter; the ratio is printed.
-  expectBrazilianAgreesWithTheElasticSolution(false, 0.0);
+  const BrazilianResult r = brazilian(cementedDisc(false, 13), 8.0, true);
+  expectCentralStressIsElastic(r);
+  expectSplitAlongTheLoadedDiameter(r);
+}
+
+TEST(LabTests, BrazilianShortCylinder3DCentralStressIsTheElasticSolutionOnAnotherPack)
+{
+  expectCentralStressIsElastic(brazilian(cementedDisc(false, 17), 8.0, false));
 }
 
 namespace {
@@ -302,7 +355,7 @@ TEST(LabTests, DISABLED_BrazilianOverDirectTensileStrengthOfTheSameRock)
     std::printf("Grip Length %.3g: %zu of %zu broken bonds in the gauge length\n", grip, t.gauge, t.broken);
   }
   for (double rate : { 8.0 }) {
-    const BrazilianResult b = brazilian(cementedDisc(false), rate);
+    const BrazilianResult b = brazilian(cementedDisc(false, 13), rate, true);
     const TensionResult t = directTension(2.0, rate);
     std::printf("strain rate %.3g /s: Brazilian Strength %.4g Pa, Tensile Strength %.4g Pa, ratio %.3f\n", rate,
                 b.strength, t.strength, b.strength / t.strength);
@@ -380,3 +433,106 @@ TEST(LabTests, BrazilianStressIsTwoPOverPiDtOfTheCarvedDisc)
   b.axis = 2;
   EXPECT_THROW(startLoadTest(flat, b), InputError);
 }
+
+// The elastic solution of the diametrally loaded disc (dem/BrazilianSolution.h): Hertz
+// (1883) / Frocht (1948), checked against its centre values and the integrals that the
+// equilibrium of parts of the disc fixes, by quadrature of the point field.
+TEST(LabTests, BrazilianElasticSolutionCentreValuesAndEquilibrium)
+{
+  const double D = 0.02;
+  const double R = 0.5 * D;
+  const double t = 0.01;
+  const double P = 150.0;
+  const double s0 = brazilianStress(P, D, t); // 2P/(pi D t)
+  const double tol = 1e-12 * s0;
+  // The centre: tension s0 across the loaded diameter, compression 3 s0 along it.
+  const StressTensor c = brazilianElasticStress(0.0, 0.0, P, D, t);
+  EXPECT_NEAR(c[0], -s0, tol);
+  EXPECT_NEAR(c[1], 3.0 * s0, tol);
+  EXPECT_NEAR(c[3], 0.0, tol);
+  EXPECT_EQ(c[2], 0.0);
+  // Along the loaded diameter the tension is s0 everywhere (ISRM: the split starts anywhere on it).
+  for (double y : { -0.9 * R, -0.5 * R, 0.3 * R, 0.95 * R }) {
+    EXPECT_NEAR(brazilianElasticStress(0.0, y, P, D, t)[0], -s0, 1e-9 * s0) << y;
+  }
+  // The rim is free of traction away from the two loads: sigma n = 0.
+  for (double deg : { 0.0, 20.0, 45.0, 80.0, 135.0, 200.0, 300.0 }) {
+    const double a = deg * kPi / 180.0;
+    const double nx = std::cos(a);
+    const double ny = std::sin(a);
+    const double rim = R * (1.0 - 1e-12); // on the rim (rounding kept inside)
+    const StressTensor s = brazilianElasticStress(rim * nx, rim * ny, P, D, t);
+    EXPECT_NEAR(s[0] * nx + s[3] * ny, 0.0, 1e-9 * s0) << deg;
+    EXPECT_NEAR(s[3] * nx + s[1] * ny, 0.0, 1e-9 * s0) << deg;
+  }
+  // Equilibrium of the upper half: the compression across the horizontal diameter sums to P / t.
+  const int n = 20000;
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double x = -R + (k + 0.5) * D / n;
+    sum += brazilianElasticStress(x, 0.0, P, D, t)[1] * D / n;
+  }
+  EXPECT_NEAR(sum, P / t, 1e-6 * P / t);
+  // Equilibrium of the part beyond a vertical chord x = c != 0: no horizontal load acts on
+  // it, so sigma_xx sums to zero over the chord (the tension near the centre is balanced by
+  // compression near the rim).
+  for (double cx : { 0.2 * R, 0.5 * R }) {
+    const double h = std::sqrt(R * R - cx * cx);
+    double chord = 0.0;
+    double magnitude = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double y = -h + (k + 0.5) * 2.0 * h / n;
+      const double sxx = brazilianElasticStress(cx, y, P, D, t)[0];
+      chord += sxx * 2.0 * h / n;
+      magnitude += std::abs(sxx) * 2.0 * h / n;
+    }
+    EXPECT_NEAR(chord, 0.0, 1e-5 * magnitude) << cx;
+  }
+  // The mean over a concentric disc of radius a (closed form) against the quadrature of
+  // the point field (polar: midpoint in r and in the angle).
+  for (double a : { 0.0, 0.125 * D, 0.25 * D, 0.35 * D }) {
+    const StressTensor mean = brazilianElasticMean(a, P, D, t);
+    EXPECT_NEAR(mean[0], -s0 * (1.0 - a * a / (R * R)), tol);
+    EXPECT_NEAR(mean[1], s0 * (3.0 - a * a / (R * R)), tol);
+    if (a == 0.0) {
+      continue;
+    }
+    const int nr = 400;
+    const int nt = 256;
+    StressTensor q{};
+    for (int i = 0; i < nr; ++i) {
+      const double r = (i + 0.5) * a / nr;
+      for (int j = 0; j < nt; ++j) {
+        const double th = (j + 0.5) * 2.0 * kPi / nt;
+        const StressTensor s = brazilianElasticStress(r * std::cos(th), r * std::sin(th), P, D, t);
+        for (int k = 0; k < 6; ++k) {
+          q[k] += s[k] * r * (a / nr) * (2.0 * kPi / nt) / (kPi * a * a);
+        }
+      }
+    }
+    EXPECT_NEAR(q[0], mean[0], 1e-5 * s0) << a;
+    EXPECT_NEAR(q[1], mean[1], 1e-5 * s0) << a;
+    EXPECT_NEAR(q[3], 0.0, 1e-5 * s0) << a;
+  }
+  // The whole disc: its mean stress is fixed by the two loads alone, (1 / (pi R^2 t)) sum x (x) F.
+  const StressTensor whole = brazilianElasticMean(R, P, D, t);
+  EXPECT_NEAR(whole[0], 0.0, tol);
+  EXPECT_NEAR(whole[1], 2.0 * P * R / (kPi * R * R * t), tol);
+  // Bad input names the parameter.
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message([&] { brazilianElasticMean(0.6 * D, P, D, t); }).find("Radius = 0.012 m is out of range"),
+            std::string::npos);
+  EXPECT_NE(message([&] { brazilianElasticMean(0.0, P, 0.0, t); }).find("Diameter"), std::string::npos);
+  EXPECT_NE(message([&] { brazilianElasticStress(0.0, 0.0, -1.0, D, t); }).find("Load"), std::string::npos);
+  EXPECT_NE(message([&] { brazilianElasticStress(0.0, 0.0, P, D, 0.0); }).find("Thickness"), std::string::npos);
+  EXPECT_NE(message([&] { brazilianElasticStress(0.0, R, P, D, t); }).find("load points"), std::string::npos);
+  EXPECT_NE(message([&] { brazilianElasticStress(R, R, P, D, t); }).find("is out of range"), std::string::npos);
+}
+
