@@ -16,6 +16,8 @@ writes, under OUT:
                                      <!-- /atlas:NAME --> (rates, modulus, threads), each with
                                      its command, the machine and the load; the rest of the
                                      page is kept (a new page holds only the tables).
+  images/atlas_timestep_bonded.png   Timestep Safety 0.05-0.5 on the cemented specimen: UCS and E
+                                     against the smallest, run time and steps;
   images/atlas_stability.png         the stability map: Timestep Safety against the Bond Modulus /
                                      grain Young's modulus ratio (unconfined), Settling Damping
                                      against Servo Alpha (triaxial); unstable, detected, servo
@@ -64,6 +66,10 @@ QUICK = {"particles": 300, "rate_runs": [("rates", [256, 128, 64], None)], "modu
          "threads_factor": 256,
          "stability": {"rate_factor": 256, "ratios": [1], "safeties": [0.3, 3], "dampings": [0.7], "alphas": [0.5, 1],
                        "servo_safety": 0.3, "sigma3": 1e6, "max_steps": 20000}}
+FULL["bonded_safeties"] = [0.05, 0.1, 0.2, 0.3, 0.5]
+FULL["bonded_factor"] = 16
+QUICK["bonded_safeties"] = [0.3, 0.5]
+QUICK["bonded_factor"] = 256
 # The engine's defaults (Plugin XML): Timestep Safety 0.1, Settling Damping 0.7, Servo Alpha 0.5,
 # Bond Modulus 1e9 Pa = Young's Modulus 1e9 Pa (ratio 1).
 DEFAULTS = {"safety": 0.1, "ratio": 1.0, "damping": 0.7, "alpha": 0.5}
@@ -410,6 +416,54 @@ def stability_section(bench, cfg, work, out):
     return text, numbers, [image]
 
 
+def bonded_args(cfg, factor, extra):
+    args = ["--particles", str(cfg["particles"]), "--threads", "1", "--tests", "rates", "--rate-factors",
+            "%g" % factor] + extra + ROCK
+    return args
+
+
+def timestep_bonded_section(bench, cfg, work, out):
+    """UCS, E, steps and run time at each Timestep Safety on the cemented specimen (error against the smallest)."""
+    rows, notes = [], []
+    for safety in cfg["bonded_safeties"]:
+        args = bonded_args(cfg, cfg["bonded_factor"], ["--safety", "%g" % safety])
+        r, note = run(bench, args, work, "timestep_bonded_%g" % safety, cfg is FULL)
+        r[0]["safety"] = safety
+        rows.append(r[0])
+        notes.append(note)
+    ref = rows[0]
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    s = [r["safety"] for r in rows]
+    ax[0].semilogx(s, [pct(r["ucs"], ref["ucs"]) for r in rows], "o-", label="UCS")
+    ax[0].semilogx(s, [pct(r["E"], ref["E"]) for r in rows], "s--", label="E")
+    ax[0].axhspan(-2, 2, color="0.9")
+    ax[0].axvline(DEFAULTS["safety"], color="b", ls=":")
+    ax[0].set_xlabel("Timestep Safety")
+    ax[0].set_ylabel("difference from Timestep Safety %g (%%)" % ref["safety"])
+    ax[0].legend()
+    ax[1].loglog([r["steps"] for r in rows], [r["seconds"] for r in rows], "o-")
+    for r in rows:
+        ax[1].annotate("%g" % r["safety"], (r["steps"], r["seconds"]), textcoords="offset points", xytext=(4, 4),
+                       fontsize=8)
+    ax[1].set_xlabel("steps")
+    ax[1].set_ylabel("run time (s)")
+    fig.suptitle("Timestep Safety on the cemented specimen, %d grains, %g x the Suggested Strain Rate"
+                 % (cfg["particles"], cfg["bonded_factor"]))
+    fig.tight_layout()
+    image = os.path.join(out, "images", "atlas_timestep_bonded.png")
+    fig.savefig(image, dpi=80)
+    plt.close(fig)
+    body = table(["Timestep Safety", "timestep (s)", "UCS (Pa)", "UCS vs smallest", "E (Pa)", "E vs smallest",
+                  "strain at peak", "steps", "run time (s)"],
+                 [["%g" % r["safety"], "%.3g" % r["timestep"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
+                   "%.4g" % r["E"], "%+.2f %%" % pct(r["E"], ref["E"]), "%.4g" % r["peak_strain"], "%d" % r["steps"],
+                   "%.1f" % r["seconds"]] for r in rows])
+    text = "Command: `rockdem_bench_rock %s` with `--safety` each of %s (%s; %s).\n\n%s" % (
+        " ".join(bonded_args(cfg, cfg["bonded_factor"], ["--safety", "S"])),
+        ", ".join("%g" % v for v in cfg["bonded_safeties"]), machine(), "; ".join(notes), body)
+    return text, rows, [image]
+
+
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
     page = ""
@@ -435,7 +489,8 @@ def main():
     parser.add_argument("--out", default=os.path.join(HERE, "..", "Documentation"))
     parser.add_argument("--work", default=None)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", default="rates,modulus,threads,stability", help="sections to run (comma list)")
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded",
+                        help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
     work = o.work or os.path.join(o.out, "atlas_runs")
@@ -443,7 +498,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     sections, numbers, images = {}, [], []
     makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section,
-              "stability": stability_section}
+              "stability": stability_section, "timestep_bonded": timestep_bonded_section}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text

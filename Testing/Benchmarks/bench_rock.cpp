@@ -35,8 +35,8 @@
 //     P-wave speed sqrt(E / density), and the count of non-finite values in what the run
 //     left (every sample's measurements, the model after the run: particles, walls, bonds,
 //     test history), which must be 0.
-//   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --contact-law linear|hertz
-//     (default hertz, Hertz-Mindlin); --servo-alpha A; --max-steps N stops a test after N steps.
+//   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --servo-alpha A; --max-steps N
+//     stops a test after N steps; --to-max-strain: the stability runs go on to Max Strain.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
 //     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
 // Every option is listed by --help. SI units.
@@ -101,7 +101,6 @@ struct Options {
   double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
   double maxSteps = 0.0;        // > 0: a test stops after this many steps
   bool probeToMaxStrain = false; // --tests stability: run every test to Max Strain (no stop after the peak)
-  ContactLaw contactLaw = ContactLaw::HertzMindlin;
   std::vector<double> safeties{ 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5 }; // --tests stability
   std::vector<double> bondRatios{ 0.1, 1.0, 10.0, 100.0 };                // x --modulus
   std::vector<double> dampings{ 0.0, 0.3, 0.7, 0.9, 0.95 };
@@ -152,8 +151,6 @@ Options parse(int argc, char** argv)
       o.dampings = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--servo-alphas" && i + 1 < argc) {
       o.servoAlphas = rockdem_bench::parseList<double>(argv[++i]);
-    } else if (a == "--contact-law" && i + 1 < argc && (std::string(argv[i + 1]) == "linear" || std::string(argv[i + 1]) == "hertz")) {
-      o.contactLaw = std::string(argv[++i]) == "linear" ? ContactLaw::Linear : ContactLaw::HertzMindlin;
     } else if (a == "--sigma3" && i + 1 < argc) {
       o.sigma3 = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--specimen" && i + 1 < argc) {
@@ -206,7 +203,6 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   m.material.rollingFriction = o.rolling;
   m.gravity.setZero();
   m.solver.threads = o.threads;
-  m.solver.contactLaw = o.contactLaw;
   m.solver.parallelThreshold = o.threads == 1 ? 1000000000 : 0;
   PackParameters p;
   p.initialElements = o.particles;
