@@ -33,11 +33,6 @@ double meanParticleVolume(const Domain& domain, RadiusRange range)
   return 4.0 / 3.0 * pi * (a + b) * (a * a + b * b) / 4.0;
 }
 
-double boxVolume(const Domain& domain)
-{
-  return domain.size.x() * domain.size.y() * domain.size.z(); // m^3 (2D: area x thickness)
-}
-
 /// Volume of the fine zone as the pack sees it: over the moving axes (2D: area x slab).
 double fineZoneVolume(const FineZone& zone, const Domain& domain)
 {
@@ -187,21 +182,6 @@ private:
   double fineProbability_ = 0.0;
 };
 
-/// Mean particle volume (m^3) over both zones, weighted as candidates are drawn.
-double meanPlacedVolume(const Domain& domain, const PackParameters& params)
-{
-  const double mainMean = meanParticleVolume(domain, { params.minimumSize, params.maximumSize });
-  if (!params.fineZone.enabled) {
-    return mainMean;
-  }
-  const FineZone& zone = params.fineZone;
-  const double fineMean = meanParticleVolume(domain, { zone.minimumSize, zone.maximumSize });
-  const double fineVolume = fineZoneVolume(zone, domain);
-  const double mainVolume = std::max(0.0, boxVolume(domain) - fineVolume);
-  const double count = fineVolume / fineMean + mainVolume / mainMean;
-  return (fineVolume + mainVolume) / count;
-}
-
 std::size_t attemptBudget(double expectedParticles)
 {
   return std::max(kMinimumAttemptBudget,
@@ -232,6 +212,26 @@ void runPlacement(SequentialPlacer& placer, std::size_t budget, PackReport& repo
 }
 
 } // namespace
+
+double boxVolume(const Domain& domain)
+{
+  return domain.size.x() * domain.size.y() * domain.size.z(); // m^3 (2D: area x thickness)
+}
+
+double meanPlacedVolume(const Domain& domain, const PackParameters& params)
+{
+  const double mainMean = meanParticleVolume(domain, { params.minimumSize, params.maximumSize });
+  if (!params.fineZone.enabled) {
+    return mainMean;
+  }
+  const FineZone& zone = params.fineZone;
+  const double fineMean = meanParticleVolume(domain, { zone.minimumSize, zone.maximumSize });
+  const double fineVolume = fineZoneVolume(zone, domain);
+  const double mainVolume = std::max(0.0, boxVolume(domain) - fineVolume);
+  const double count = fineVolume / fineMean + mainVolume / mainMean;
+  return (fineVolume + mainVolume) / count;
+}
+
 
 // ---------------------------------------------------------------------------------------
 

@@ -2,7 +2,7 @@
 #include "dem/Pack.h"
 
 #include "dem/Errors.h"
-#include "dem/SizeClassGrids.h"
+#include "dem/MemoryEstimate.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -72,10 +72,9 @@ std::string gibibytes(double bytes)
 
 void requireMemoryForParticles(const std::string& what, double particles)
 {
-  // The particle itself, the grids that place it, and its radius drawn before placement.
-  const double bytesPerParticle = static_cast<double>(
-    Particles::bytesPerParticle() + SizeClassGrids::kBytesPerParticle + 2 * sizeof(double));
-  const double needed = particles * bytesPerParticle;
+  // What the model takes while a stage steps it: more than placement alone (the particle,
+  // its search grids and its drawn radius), so a pack that fits can also be run on.
+  const double needed = estimateMemory(particles);
   const double available = static_cast<double>(availableMemoryBytes());
   if (needed > available) {
     throw InputError(what + " needs about " + gibibytes(needed) +

@@ -143,9 +143,18 @@ struct CompactReport {
 /// particle count whose memory exceeds the machine's, a fine zone outside the box, ...).
 void validate(const PackParameters& params, const Domain& domain);
 
+/// Volume of the model's box (m^3; a 2D section: its area x the slab thickness).
+double boxVolume(const Domain& domain);
+
+/// Mean volume (m^3) of a placed particle, the radii uniform in [Minimum Size, Maximum
+/// Size] (4/3 pi (a + b)(a^2 + b^2) / 4; a 2D section: pi t (a^2 + a b + b^2) / 3), over the
+/// box and the fine zone with its own sizes, weighted as Add Elements draws candidates.
+double meanPlacedVolume(const Domain& domain, const PackParameters& params);
+
 /// Throws InputError ("<what> needs about X GiB of memory but the machine has Y GiB
-/// available.") when this many particles, with the search grids that place them, would not
-/// fit in availableMemoryBytes().
+/// available.") when this many particles would not fit in availableMemoryBytes() while a
+/// stage steps them (dem::estimateMemory, the figure DEM Pack Source shows as Estimated
+/// Memory; it is larger than what placement alone takes).
 void requireMemoryForParticles(const std::string& what, double particles);
 
 /// Clears the particles, reseeds the model's random stream from params.randomSeed and
