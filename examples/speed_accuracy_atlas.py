@@ -144,6 +144,15 @@ def parse(lines):
     return rows
 
 
+def save_chart(fig, out, name):
+    """Writes the figure to OUT/images/NAME (80 dpi) and closes it; its path."""
+    fig.tight_layout()
+    image = os.path.join(out, "images", name)
+    fig.savefig(image, dpi=80)
+    plt.close(fig)
+    return image
+
+
 def pct(a, b):
     return 100.0 * (a - b) / b if b else math.nan
 
@@ -188,10 +197,7 @@ def rates_section(bench, cfg, work, out):
         a.axvline(1.0, color="r", ls=":")
         a.set_xlabel("strain rate / Suggested Strain Rate")
     fig.suptitle("Unconfined compression, %d grains, stiff-bond rock: strain rate against accuracy" % cfg["particles"])
-    fig.tight_layout()
-    image = os.path.join(out, "images", "speed_accuracy_rates.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "speed_accuracy_rates.png")
     body = table(["rate / suggested", "strain rate (1/s)", "UCS (Pa)", "UCS vs slowest", "E (Pa)", "E vs slowest",
                   "strain at peak", "inertial number at peak", "unbalanced force ratio", "steps", "run time (s)"],
                  [["%.3g" % r["factor"], "%.4g" % r["rate"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
@@ -233,10 +239,7 @@ def modulus_section(bench, cfg, work, out):
         a.set_xlabel("grain and bond modulus: times softer than %g Pa" % ref["modulus"])
     fig.suptitle("Modulus scaling, strengths kept, %d grains, %g x the Suggested Strain Rate"
                  % (cfg["particles"], cfg["modulus_factor"]))
-    fig.tight_layout()
-    image = os.path.join(out, "images", "speed_accuracy_modulus.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "speed_accuracy_modulus.png")
     body = table(["modulus (Pa)", "softer", "UCS (Pa)", "UCS vs 1x", "strain at peak", "E (Pa)", "UCS / E",
                   "peak within Max Strain", "timestep (s)", "steps", "run time (s)"],
                  [["%g" % r["modulus"], "%g" % s, "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
@@ -371,10 +374,7 @@ def stability_section(bench, cfg, work, out):
                     fontsize=9)
     ax[0].legend(fontsize=7, loc="lower left")
     fig.suptitle("Stability map, %d grains, stiff-bond rock" % cfg["particles"])
-    fig.tight_layout()
-    image = os.path.join(out, "images", "atlas_stability.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "atlas_stability.png")
 
     def cell(r):
         if r["refused"]:
@@ -449,10 +449,7 @@ def timestep_bonded_section(bench, cfg, work, out):
     ax[1].set_ylabel("run time (s)")
     fig.suptitle("Timestep Safety on the cemented specimen, %d grains, %g x the Suggested Strain Rate"
                  % (cfg["particles"], cfg["bonded_factor"]))
-    fig.tight_layout()
-    image = os.path.join(out, "images", "atlas_timestep_bonded.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "atlas_timestep_bonded.png")
     body = table(["Timestep Safety", "timestep (s)", "UCS (Pa)", "UCS vs smallest", "E (Pa)", "E vs smallest",
                   "strain at peak", "steps", "run time (s)"],
                  [["%g" % r["safety"], "%.3g" % r["timestep"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
