@@ -23,6 +23,8 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <limits>
 #include <cmath>
 #include <cstring>
@@ -228,14 +230,23 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
     t.initialSpread[k] = value("TestState", 9 + k, 12);
   }
   auto* history = vtkDoubleArray::SafeDownCast(fd->GetArray("TestHistory"));
-  if (!history || history->GetNumberOfComponents() != static_cast<int>(dem::HistoryColumnCount))
+  // Data saved before the Gauge Strain column hold the first 27 columns: the gauge strain
+  // reads as unknown (NaN), as in dem::readState.
+  const int columns = history ? history->GetNumberOfComponents() : 0;
+  if (columns != static_cast<int>(dem::HistoryColumnCount) &&
+    columns != static_cast<int>(dem::HistoryColumnCountBeforeGaugeStrain))
   {
     Missing("array 'TestHistory' (" + std::to_string(dem::HistoryColumnCount) + " columns)");
   }
-  t.history.resize(static_cast<std::size_t>(history->GetNumberOfTuples()));
+  std::array<double, dem::HistoryColumnCount> unknown{};
+  unknown.fill(std::numeric_limits<double>::quiet_NaN());
+  t.history.assign(static_cast<std::size_t>(history->GetNumberOfTuples()), unknown);
   for (std::size_t r = 0; r < t.history.size(); ++r)
   {
-    history->GetTypedTuple(static_cast<vtkIdType>(r), t.history[r].data());
+    for (int c = 0; c < columns; ++c)
+    {
+      t.history[r][static_cast<std::size_t>(c)] = history->GetComponent(static_cast<vtkIdType>(r), c);
+    }
   }
 }
 } // namespace

@@ -226,10 +226,16 @@ def mohr_coulomb_line(cohesion, friction_angle_deg):
 def elastic_constants(history, axis="Z", lower=0.10, upper=0.50):
     """Young's modulus (Pa) and Poisson's ratio from an unconfined compression history.
 
-    history: a fetched History vtkTable or a dict of columns with ``Axial Stress (Pa)``
-    and ``Strain X/Y/Z``. Uses the shear-stage rows before the peak whose axial stress
-    lies between ``lower`` and ``upper`` (fractions) of the peak axial stress:
+    history: a fetched History vtkTable or a dict of columns with ``Axial Stress (Pa)``,
+    ``Strain X/Y/Z`` and, from histories written since it exists, ``Gauge Strain``. Uses
+    the shear-stage rows before the peak whose axial stress lies between ``lower`` and
+    ``upper`` (fractions) of the peak axial stress:
 
+    - the axial strain is the Gauge Strain, the specimen's own strain (from the spread of
+      its particle centres along the axis, as the laboratory's gauges on the specimen read
+      it), where every row in the window has one; otherwise (older histories) the platen
+      strain ``Strain <axis>``, which also holds the compliance of the grains' contacts
+      with the platens (Documentation/Press.md, "Gauge Strain") and so reads E and nu low;
     - E is the slope of the least-squares line axial stress = E x axial strain + const
       through those rows (with exactly linear data it is the secant modulus);
     - the lateral strain is the mean of the two other axes' strains; strains in the
@@ -251,6 +257,7 @@ def elastic_constants(history, axis="Z", lower=0.10, upper=0.50):
     rows = np.nonzero(_shear_rows(h))[0]
     if rows.size == 0:
         raise ValueError("no shear-stage rows in the history")
+    gauge = h.get("Gauge Strain")
     stress, strain, lateral = stress[rows], strain[rows], lateral[rows]
     ipeak = int(np.argmax(stress))
     peak = stress[ipeak]
@@ -258,6 +265,8 @@ def elastic_constants(history, axis="Z", lower=0.10, upper=0.50):
     if window.sum() < 2:
         raise ValueError("only %d history rows between %g and %g of the peak (%.4g Pa): sample "
                          "more often (Sample Interval) or load more slowly" % (window.sum(), lower, upper, peak))
+    if gauge is not None and np.all(np.isfinite(gauge[rows][window])):
+        strain = gauge[rows]
     e_mod = np.polyfit(strain[window], stress[window], 1)[0]
     nu = -np.polyfit(strain[window], lateral[window], 1)[0]
     return float(e_mod), float(nu)

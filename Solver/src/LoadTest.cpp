@@ -53,7 +53,7 @@ const std::vector<std::string>& historyColumns()
     "Stress Z+ (Pa)", "Sigma XX (Pa)", "Sigma YY (Pa)", "Sigma ZZ (Pa)", "Sigma XY (Pa)",
     "Sigma YZ (Pa)", "Sigma ZX (Pa)", "Axial Stress (Pa)", "Lateral Stress (Pa)",
     "Deviator Stress (Pa)", "Broken In Tension", "Broken In Shear", "Unbalanced Force Ratio",
-    "Inertial Number", "Stage", "Mean Stress (Pa)"
+    "Inertial Number", "Stage", "Mean Stress (Pa)", "Gauge Strain"
   };
   return columns;
 }
@@ -306,6 +306,9 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
       t.initialLength[k] = hi - lo;
       t.initialSpread[k] = centreSpread(p, k);
     }
+  }
+  if (settings.mode != TestMode::Off && !p.empty()) {
+    t.initialSpread[static_cast<std::size_t>(a)] = centreSpread(p, a); // the Gauge Strain's reference
   }
   t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
   if (settings.mode == TestMode::Tension) {

@@ -279,6 +279,10 @@ TestMeasurements Simulation::measurements() const
     const double l0 = t.initialLength[k] > 0.0 ? t.initialLength[k] : d.size[k];
     m.strain[k] = (planar && k == 2) ? 0.0 : (l0 - length[k]) / l0;
   }
+  const auto axis = static_cast<std::size_t>(std::clamp(s.axis, 0, 2));
+  if (t.initialSpread[axis] > 0.0 && s.mode != TestMode::Off && !p.empty()) {
+    m.gaugeStrain = 1.0 - centreSpread(p, s.axis) / t.initialSpread[axis];
+  }
   const double v0 = t.initialVolume > 0.0 ? t.initialVolume
                                            : d.size.x() * d.size.y() * d.size.z();
   m.volumetricStrain = 1.0 - length[0] * length[1] * length[2] / v0; // a cylinder: (D/D0)^2 L/L0 as well
@@ -469,6 +473,7 @@ void Simulation::sampleLoadTest(std::int64_t steps)
   row[c++] = m.inertialNumber;
   row[c++] = static_cast<double>(t.stage);
   row[c++] = m.meanStress;
+  row[c++] = m.gaugeStrain;
   t.history.push_back(row);
   // Peaks: in tension the strength is the largest pull (most negative axial stress).
   const double axialMagnitude = s.mode == TestMode::Tension ? -m.axialStress : m.axialStress;
@@ -495,6 +500,9 @@ void Simulation::sampleLoadTest(std::int64_t steps)
         t.stage = TestStage::Shear;
         t.initialLength = specimenLengths(model_);
         t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];
+        if (t.initialSpread[static_cast<std::size_t>(a)] > 0.0) { // the Gauge Strain's reference
+          t.initialSpread[static_cast<std::size_t>(a)] = centreSpread(model_.particles, a);
+        }
       }
     }
   } else if (t.stage == TestStage::Shear) {

@@ -9,10 +9,12 @@
 #include "dem/Simulation.h"
 #include "dem/StateFile.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <unordered_set>
 
 #include <sys/stat.h>
@@ -129,9 +131,25 @@ public:
   void table(const char* path, std::vector<std::array<double, HistoryColumnCount>>& rows)
   {
     const std::size_t r = length(path, 0);
-    Handle d = check(path, Kind::Float, 8, { r, HistoryColumnCount }, "one row per sample");
-    rows.assign(r, std::array<double, HistoryColumnCount>{});
-    read(d.get(), path, H5T_NATIVE_DOUBLE, r ? rows.data()->data() : nullptr, r * HistoryColumnCount);
+    // Files written before the Gauge Strain column hold the first 27 columns: they read
+    // with the gauge strain unknown (NaN). Any other width is refused by check().
+    std::size_t columns = HistoryColumnCount;
+    {
+      Handle probe = open(path);
+      const std::vector<hsize_t> dims = extent(probe.get(), path);
+      if (dims.size() == 2 && dims[1] == HistoryColumnCountBeforeGaugeStrain) {
+        columns = HistoryColumnCountBeforeGaugeStrain;
+      }
+    }
+    Handle d = check(path, Kind::Float, 8, { r, columns }, "one row per sample");
+    std::vector<double> flat(r * columns);
+    read(d.get(), path, H5T_NATIVE_DOUBLE, flat.empty() ? nullptr : flat.data(), flat.size());
+    std::array<double, HistoryColumnCount> unknown{};
+    unknown.fill(std::numeric_limits<double>::quiet_NaN());
+    rows.assign(r, unknown);
+    for (std::size_t i = 0; i < r; ++i) {
+      std::copy_n(flat.data() + i * columns, columns, rows[i].data());
+    }
   }
 
   [[noreturn]] void fail(const std::string& what) const { throw FileError(prefix_ + ": " + what + "."); }

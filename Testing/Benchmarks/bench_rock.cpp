@@ -589,7 +589,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   startLoadTest(m, s); // again, with the rate that gives the strain per step
   const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
   Simulation run(m);
-  std::vector<double> strain, stress, lateral, ufr;
+  std::vector<double> strain, stress, lateral, gauge, ufr;
   std::size_t peakSample = 0;
   BreakTracker breaks(m);
   bool fallen = false;
@@ -613,6 +613,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
                    static_cast<long long>(r.steps), e, sigma, r.peak, countBonds(m.bonds).broken, secondsSince(start));
     }
     lateral.push_back(0.5 * (me.strain[0] + me.strain[1]));
+    gauge.push_back(sign * me.gaugeStrain); // the specimen's own axial strain (E and nu)
     ufr.push_back(run.diagnostics().unbalancedForceRatio);
     if (sigma > r.peak) {
       r.peak = sigma;
@@ -637,11 +638,12 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   for (std::size_t i = 0; i < peakSample; ++i) {
     r.ufrBeforePeak += ufr[i] / static_cast<double>(peakSample);
   }
-  // Elastic constants between 10 % and 50 % of the peak, before it.
+  // Elastic constants between 10 % and 50 % of the peak, before it, against the Gauge
+  // Strain (the specimen's own axial strain), as rockdem.elastic_constants reads them.
   std::vector<double> x, y, l;
   for (std::size_t i = 0; i < stress.size(); ++i) {
     if (strain[i] <= r.peakStrain && stress[i] >= 0.1 * r.peak && stress[i] <= 0.5 * r.peak) {
-      x.push_back(strain[i]);
+      x.push_back(gauge[i]);
       y.push_back(stress[i]);
       l.push_back(lateral[i]);
     }

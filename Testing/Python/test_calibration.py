@@ -1,6 +1,6 @@
 """pvpython: one small end-to-end calibration (Documentation/Calibration.md).
 
-A tiny specimen (300 grains) is calibrated to a Young's modulus of 100 MPa and a UCS of
+A tiny specimen (300 grains) is calibrated to a Young's modulus of 500 MPa and a UCS of
 1 MPa, which the model reaches (soft moduli keep the steps long, Rock.md; the number of
 steps to failure does not depend on the modulus). The starting parameters give about
 20 % of that E and 30 % of that UCS, so both secant loops have to move. Checks: converged; the final errors within the stated tolerances (5 %);
@@ -24,7 +24,7 @@ import rockdem  # noqa: E402
 
 c = Checks()
 t0 = time.time()
-TARGET = {"name": "CI rock", "youngs_modulus": 1.0e8, "ucs": 1.0e6}
+TARGET = {"name": "CI rock", "youngs_modulus": 5.0e8, "ucs": 1.0e6}
 RECIPE = {"elements": 300, "seed": 3, "max_tests": 12}
 records = []
 out = tempfile.mkdtemp(prefix="rockdem_calibration_")

@@ -34,7 +34,7 @@ ENGINE_COLUMNS = [
     "Stress Z+ (Pa)", "Sigma XX (Pa)", "Sigma YY (Pa)", "Sigma ZZ (Pa)", "Sigma XY (Pa)",
     "Sigma YZ (Pa)", "Sigma ZX (Pa)", "Axial Stress (Pa)", "Lateral Stress (Pa)",
     "Deviator Stress (Pa)", "Broken In Tension", "Broken In Shear", "Unbalanced Force Ratio",
-    "Inertial Number", "Stage", "Mean Stress (Pa)"]
+    "Inertial Number", "Stage", "Mean Stress (Pa)", "Gauge Strain"]
 PLOT_COLUMNS = ["Axial Strain (%)", "Volumetric Strain (%)", "Axial Stress (MPa)",
                 "Lateral Stress (MPa)", "Deviator Stress (MPa)"]
 FACES = ["Stress X- (Pa)", "Stress X+ (Pa)", "Stress Y- (Pa)", "Stress Y+ (Pa)",

@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <cmath>
+#include <array>
 #include <cstdio>
 #include <dirent.h>
 #include <fstream>
@@ -424,6 +426,45 @@ TEST(StateFile, BondsWithoutSofteningReadAsBrittleAndUndamaged)
   const Model old = readStateFromMemory(older.data(), older.size());
   EXPECT_EQ(old.bonds.softening, std::vector<double>(m.bonds.size(), 0.0));
   EXPECT_EQ(old.bonds.damage, std::vector<double>(m.bonds.size(), 0.0));
+}
+
+// A state file written before the Gauge Strain column holds 27 history columns: it reads,
+// with the first 27 columns as written and the gauge strain unknown (NaN); another width
+// is refused, naming the dataset and the width expected.
+TEST(StateFile, HistoryWithoutTheGaugeStrainReadsItAsUnknown)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  for (int r = 0; r < 3; ++r) {
+    std::array<double, HistoryColumnCount> row{};
+    for (std::size_t k = 0; k < HistoryColumnCount; ++k) {
+      row[k] = 100.0 * r + static_cast<double>(k) + 0.25;
+    }
+    m.test.history.push_back(row);
+  }
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  const Model back = readStateFromMemory(image.data(), image.size());
+  EXPECT_TRUE(dem::statetest::sameBits(back.test.history, m.test.history));
+  auto withColumns = [&](std::size_t columns) {
+    return editImage(image, [&](hid_t f) {
+      std::vector<double> flat;
+      for (const auto& row : m.test.history) {
+        flat.insert(flat.end(), row.begin(), row.begin() + static_cast<std::ptrdiff_t>(columns));
+      }
+      replaceDataset(f, "test/history", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, { m.test.history.size(), columns }, flat);
+    });
+  };
+  const auto older = withColumns(HistoryColumnCountBeforeGaugeStrain);
+  const Model old = readStateFromMemory(older.data(), older.size());
+  ASSERT_EQ(old.test.history.size(), m.test.history.size());
+  for (std::size_t r = 0; r < old.test.history.size(); ++r) {
+    for (std::size_t k = 0; k < HistoryColumnCountBeforeGaugeStrain; ++k) {
+      EXPECT_EQ(old.test.history[r][k], m.test.history[r][k]) << r << " " << k;
+    }
+    EXPECT_TRUE(std::isnan(old.test.history[r][HistoryColumnCount - 1])) << "the gauge strain is unknown";
+  }
+  const auto narrower = withColumns(HistoryColumnCountBeforeGaugeStrain - 1);
+  const std::string error = memoryError(narrower);
+  EXPECT_NE(error.find("'/test/history' has size 3 x 26; expected 3 x 28"), std::string::npos) << error;
 }
 
 TEST(StateFile, InconsistentArraySizesAreRejected)

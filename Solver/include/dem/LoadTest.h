@@ -12,6 +12,7 @@
 #include "dem/SolverState.h"
 
 #include <array>
+#include <limits>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -65,7 +66,10 @@ inline bool operator!=(const LoadTestSettings& a, const LoadTestSettings& b) { r
 
 /// Names of the history columns, in order (units in the names).
 const std::vector<std::string>& historyColumns();
-constexpr std::size_t HistoryColumnCount = 27;
+constexpr std::size_t HistoryColumnCount = 28;
+/// State files written before the Gauge Strain column hold the first 27 columns; they read
+/// with the gauge strain unknown (NaN).
+constexpr std::size_t HistoryColumnCountBeforeGaugeStrain = 27;
 
 /// State of a test in progress (part of the Model).
 struct LoadTestState {
@@ -74,7 +78,9 @@ struct LoadTestState {
   std::array<double, 3> initialLength{ { 0.0, 0.0, 0.0 } }; ///< m, specimen size at the start
   double initialVolume = 0.0;      ///< m^3
   /// m, centreSpread() of the particles along each unwalled side axis at the start of a
-  /// Compression or Tension test (0 on walled axes): the reference of the lateral strain.
+  /// Compression or Tension test: the reference of the lateral strain; and along Axis at
+  /// the start of a test (of its shear stage in Triaxial): the reference of the Gauge
+  /// Strain. 0 elsewhere (and along Axis in state files written before the gauge strain).
   std::array<double, 3> initialSpread{ { 0.0, 0.0, 0.0 } };
   double peakStress = 0.0;         ///< Pa, largest axial stress so far
   double peakDeviator = 0.0;       ///< Pa, largest axial minus lateral stress so far
@@ -95,6 +101,14 @@ struct TestMeasurements {
   double meanStress = 0.0;     ///< Pa
   double inertialNumber = 0.0; ///< -, strain rate x mean diameter x sqrt(density / mean stress)
   double suggestedStrainRate = 0.0; ///< 1/s, dem::suggestedStrainRate (dem/StrainRateAdvice.h): inertial number 1e-4 at the estimated peak
+  /// -, shortening positive: the axial strain of the specimen itself, 1 - (spread of the
+  /// particle centres along Axis) / (that spread at the start), as the laboratory's gauges
+  /// on the specimen read it. Unlike the platen strain (Strain X/Y/Z, platen displacement
+  /// over the starting length) it leaves out the compliance of the platen-grain contacts
+  /// (spheres on a flat platen: Hertz contacts, most of the platen displacement at small
+  /// stress). Elastic constants (E, nu) are read from it. NaN where it is not measured
+  /// (Mode Off; tests started by older builds, whose state files hold no reference).
+  double gaugeStrain = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The Brazilian (indirect tensile) stress at the centre of a disc of the given diameter
