@@ -757,11 +757,30 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
   {
     vtkOutputWindowDisplayText((estimate.str() + "\n").c_str());
   }
-  // A strain rate far above the suggestion is risky (a strength too high): what the atlas
-  // measured (dem::strainRateAdvice).
+  // A strain rate far above the suggestion is risky (a strength too high), one far below it
+  // wasteful (many more steps for a test already quasi-static): what the atlas measured
+  // (dem::strainRateAdvice, dem::slowStrainRateAdvice).
   if (testing && press.mode != dem::TestMode::Isotropic)
   {
     const std::string advice = dem::strainRateAdvice(this->StrainRate, this->SuggestedStrainRate);
+    if (!advice.empty())
+    {
+      vtkWarningMacro(<< "DEM Load Test: " << advice);
+    }
+    const std::string slow = dem::slowStrainRateAdvice(
+      this->StrainRate, this->SuggestedStrainRate, in.Timestep, this->MaxStrain);
+    if (!slow.empty())
+    {
+      vtkWarningMacro(<< "DEM Load Test: " << slow);
+    }
+  }
+  // A timestep near the stability boundary the atlas measured for this model is risky
+  // (dem::timestepSafetyAdvice): the timestep used, as a fraction of the critical one.
+  if (in.Simulation->criticalTimestep() > 0.0)
+  {
+    const std::string advice =
+      dem::timestepSafetyAdvice(in.Timestep / in.Simulation->criticalTimestep(),
+        dem::bondToContactStiffnessRatio(in.Model), this->SettlingDamping);
     if (!advice.empty())
     {
       vtkWarningMacro(<< "DEM Load Test: " << advice);

@@ -16,6 +16,12 @@ writes, under OUT:
                                      <!-- /atlas:NAME --> (rates, modulus, threads), each with
                                      its command, the machine and the load; the rest of the
                                      page is kept (a new page holds only the tables).
+  images/atlas_timestep_bonded.png   Timestep Safety 0.05-0.5 on the cemented specimen: UCS and E
+                                     against the smallest, run time and steps;
+  images/atlas_stability.png         the stability map: Timestep Safety against the Bond Modulus /
+                                     grain Young's modulus ratio (unconfined), Settling Damping
+                                     against Servo Alpha (triaxial); unstable, detected, servo
+                                     oscillating, drifting runs, the defaults marked;
 CPU threads: the same test on 1 and 2 threads, its time and whether the UCS agrees bit for bit.
 
 --quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, into
@@ -52,8 +58,30 @@ CEMENTED_TARGET = 2.5e-5  # dem::CementedTargetInertialNumber
 FULL = {"particles": 200, "rate_runs": [("rates", [64, 16, 4, 1, 0.5, 0.25], 1e-4),
                                         ("rates_slow", [0.0625], 1e-4)],
         "moduli": [1e10, 1e9, 1e8, 1e7], "modulus_factor": 16, "threads_factor": 64}
+FULL["stability"] = {"rate_factor": 64, "ratios": [0.1, 1, 10, 100],
+                     "safeties": [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1, 1.5, 2, 3, 5],
+                     "dampings": [0, 0.3, 0.5, 0.7, 0.9, 0.95], "alphas": [0.05, 0.2, 0.5, 1], "servo_safety": 0.1,
+                     "sigma3": 1e6, "max_steps": 400000}
 QUICK = {"particles": 300, "rate_runs": [("rates", [256, 128, 64], None)], "moduli": [1e10, 1e8], "modulus_factor": 256,
-         "threads_factor": 256}
+         "threads_factor": 256,
+         "stability": {"rate_factor": 256, "ratios": [1], "safeties": [0.3, 3], "dampings": [0.7], "alphas": [0.5, 1],
+                       "servo_safety": 0.3, "sigma3": 1e6, "max_steps": 20000}}
+FULL["bonded_safeties"] = [0.05, 0.1, 0.2, 0.3, 0.5]
+FULL["bonded_factor"] = 16
+QUICK["bonded_safeties"] = [0.3, 0.5]
+QUICK["bonded_factor"] = 256
+# The engine's defaults (Plugin XML): Timestep Safety 0.1, Settling Damping 0.7, Servo Alpha 0.5,
+# Bond Modulus 1e9 Pa = Young's Modulus 1e9 Pa (ratio 1).
+DEFAULTS = {"safety": 0.1, "ratio": 1.0, "damping": 0.7, "alpha": 0.5}
+PROBE = re.compile(r"stability: map (\S+) ratio (\S+) safety (\S+) damping (\S+) alpha (\S+) timestep (\S+) critical (\S+) "
+                   r"status (\S+) peak (\S+) strain (\S+) steps (\d+) servo-max (\S+) servo-mean (\S+) max-stress (\S+) "
+                   r"max-speed (\S+) wave-speed (\S+) nonfinite (\d+) last-good (\d) settled (\d) peaked (\d) "
+                   r"broken-first (\d+) broken (\d+) bonds (\d+) seconds (\S+)")
+PROBE_KEYS = ["ratio", "safety", "damping", "alpha", "timestep", "critical", "status", "peak", "strain", "steps",
+              "servo_max", "servo_mean", "max_stress", "max_speed", "wave_speed", "nonfinite", "last_good", "settled",
+              "peaked", "broken_first", "broken", "bonds", "seconds"]
+OSCILLATION = 0.05  # servo: confining stress error above 5 % of the Confining Stress
+DRIFT = 0.02        # results more than 2 % from the reference run
 SWEEP = re.compile(r"rate-sweep: factor (\S+) strain rate (\S+) 1/s suggested (\S+) 1/s target (\S+) timestep (\S+) s "
                    r"UCS (\S+) Pa strain at peak (\S+) E (\S+) Pa inertial (\S+) ufr (\S+) steps (\d+) "
                    r"seconds (\S+) peaked (\d)")
@@ -74,8 +102,9 @@ def machine():
     return "%s, %d cores" % (cpu, os.cpu_count() or 0)
 
 
-def run(bench, args, work, name, reuse=True):
+def run(bench, args, work, name, reuse=True, parser=None):
     """Runs the bench (or reuses WORK/name.txt written by the same command); its rows."""
+    parse_rows = parser or parse
     command = [bench] + args
     text = " ".join(command[1:])
     path = os.path.join(work, name + ".txt")
@@ -83,7 +112,7 @@ def run(bench, args, work, name, reuse=True):
         with open(path) as f:
             lines = f.read().splitlines()
         if lines and lines[0] == "# command: " + text:
-            return parse(lines), lines[1][2:] if len(lines) > 1 else ""
+            return parse_rows(lines), lines[1][2:] if len(lines) > 1 else ""
     load = "load average %.2f %.2f %.2f before the run" % os.getloadavg()
     start = time.time()
     env = dict(os.environ, OMP_WAIT_POLICY="passive")
@@ -99,7 +128,7 @@ def run(bench, args, work, name, reuse=True):
     note = "%s; %.1f s wall for the whole command" % (load, wall)
     with open(path, "w") as f:
         f.write("# command: %s\n# %s\n%s" % (text, note, output))
-    return parse(output.splitlines()), note
+    return parse_rows(output.splitlines()), note
 
 
 def parse(lines):
@@ -113,6 +142,15 @@ def parse(lines):
     if not rows:
         sys.exit("no rate-sweep lines in the bench output")
     return rows
+
+
+def save_chart(fig, out, name):
+    """Writes the figure to OUT/images/NAME (80 dpi) and closes it; its path."""
+    fig.tight_layout()
+    image = os.path.join(out, "images", name)
+    fig.savefig(image, dpi=80)
+    plt.close(fig)
+    return image
 
 
 def pct(a, b):
@@ -159,10 +197,7 @@ def rates_section(bench, cfg, work, out):
         a.axvline(1.0, color="r", ls=":")
         a.set_xlabel("strain rate / Suggested Strain Rate")
     fig.suptitle("Unconfined compression, %d grains, stiff-bond rock: strain rate against accuracy" % cfg["particles"])
-    fig.tight_layout()
-    image = os.path.join(out, "images", "speed_accuracy_rates.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "speed_accuracy_rates.png")
     body = table(["rate / suggested", "strain rate (1/s)", "UCS (Pa)", "UCS vs slowest", "E (Pa)", "E vs slowest",
                   "strain at peak", "inertial number at peak", "unbalanced force ratio", "steps", "run time (s)"],
                  [["%.3g" % r["factor"], "%.4g" % r["rate"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
@@ -204,10 +239,7 @@ def modulus_section(bench, cfg, work, out):
         a.set_xlabel("grain and bond modulus: times softer than %g Pa" % ref["modulus"])
     fig.suptitle("Modulus scaling, strengths kept, %d grains, %g x the Suggested Strain Rate"
                  % (cfg["particles"], cfg["modulus_factor"]))
-    fig.tight_layout()
-    image = os.path.join(out, "images", "speed_accuracy_modulus.png")
-    fig.savefig(image, dpi=80)
-    plt.close(fig)
+    image = save_chart(fig, out, "speed_accuracy_modulus.png")
     body = table(["modulus (Pa)", "softer", "UCS (Pa)", "UCS vs 1x", "strain at peak", "E (Pa)", "UCS / E",
                   "peak within Max Strain", "timestep (s)", "steps", "run time (s)"],
                  [["%g" % r["modulus"], "%g" % s, "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
@@ -239,6 +271,196 @@ def threads_section(bench, cfg, work, out):
     return text, rows, []
 
 
+def parse_probes(lines):
+    """The "stability:" lines of the bench (each with the engine's message on the next line when it stopped the run)."""
+    rows = []
+    for line in lines:
+        m = PROBE.search(line)
+        if m:
+            row = {"map": m.group(1), "message": ""}
+            for k, v in zip(PROBE_KEYS, m.groups()[1:]):
+                row[k] = v if k == "status" else float(v)
+            rows.append(row)
+        elif line.startswith("  message: ") and rows:
+            rows[-1]["message"] = line[len("  message: "):]
+    if not rows:
+        sys.exit("no stability lines in the bench output")
+    return rows
+
+
+def classify(rows, reference):
+    """Marks each run: unstable (by what the run left, not by whether the engine said so: stopped by the
+    engine, a non-finite value, or more than 1 % of the bonds broken in the first 50 steps, where every stable
+    run breaks none: the instability of a cemented specimen breaks its bonds before it produces a NaN),
+    detected (the engine stopped it with its message and kept the last good state), drift (stable, peak more
+    than DRIFT from the reference), oscillating (servo error above OSCILLATION)."""
+    for r in rows:
+        ref = reference(r)
+        r["refused"] = r["status"] == "stopped" and r["message"].startswith("input refused")
+        r["diff"] = (r["peak"] - ref["peak"]) / ref["peak"] if ref and ref["peak"] > 0 and r["peak"] > 0 else math.nan
+        r["unstable"] = not r["refused"] and (
+            r["status"] == "stopped" or r["nonfinite"] > 0 or r["broken_first"] > 0.01 * r["bonds"])
+        r["detected"] = r["unstable"] and r["status"] == "stopped" and "went unstable" in r["message"] \
+            and r["last_good"] == 1
+        r["drift"] = not r["unstable"] and not r["refused"] and abs(r["diff"]) > DRIFT
+        r["oscillating"] = r["servo_max"] > OSCILLATION
+
+
+def stability_section(bench, cfg, work, out):
+    st = cfg["stability"]
+    common = ["--particles", str(cfg["particles"]), "--threads", "1"] + ROCK + [
+        "--rate-factor", "%g" % st["rate_factor"], "--max-steps", "%d" % st["max_steps"]]
+    ts_args = common + ["--tests", "tsmap", "--bond-ratios", ",".join("%g" % v for v in st["ratios"]),
+                        "--safeties", ",".join("%g" % v for v in st["safeties"])]
+    servo_args = common + ["--tests", "servomap", "--safety", "%g" % st["servo_safety"], "--sigma3", "%g" % st["sigma3"],
+                           "--dampings", ",".join("%g" % v for v in st["dampings"]),
+                           "--servo-alphas", ",".join("%g" % v for v in st["alphas"])]
+    ts, ts_note = run(bench, ts_args, work, "stability_timestep", cfg is FULL, parse_probes)
+    sv, sv_note = run(bench, servo_args, work, "stability_servo", cfg is FULL, parse_probes)
+    # Map 1: the reference of each ratio is its smallest-safety run; map 2: the run at the default damping and alpha.
+    smallest = {}
+    for r in ts:
+        if r["ratio"] not in smallest or r["safety"] < smallest[r["ratio"]]["safety"]:
+            smallest[r["ratio"]] = r
+    classify(ts, lambda r: smallest[r["ratio"]])
+    default = [r for r in sv if r["damping"] == DEFAULTS["damping"] and r["alpha"] == DEFAULTS["alpha"]]
+    classify(sv, lambda r: default[0] if default else None)
+    rows = ts + sv
+    unstable = [r for r in rows if r["unstable"]]
+    detected = [r for r in unstable if r["detected"]]
+    nonfinite = [r for r in rows if r["nonfinite"] > 0]
+
+    fig, ax = plt.subplots(1, 2, figsize=(12, 5))
+    styles = [("stable, within 2 % of the reference", "o", "tab:green"), ("drift above 2 %", "^", "tab:orange"),
+              ("servo error above 5 %", "D", "tab:purple"), ("unstable, stopped by the engine", "s", "k"),
+              ("unstable, NOT stopped by the engine", "X", "tab:red"), ("refused (input error)", "x", "0.5")]
+
+    def style(r):
+        if r["refused"]:
+            return 5
+        if r["unstable"]:
+            return 3 if r["detected"] else 4
+        if r["oscillating"]:
+            return 2
+        return 1 if r["drift"] else 0
+
+    def draw(a, data, x, y):
+        for k, (label, marker, colour) in enumerate(styles):
+            pts = [r for r in data if style(r) == k]
+            if pts:
+                a.scatter([r[x] for r in pts], [r[y] for r in pts], marker=marker, color=colour, s=60, label=label)
+        for r in data:
+            if math.isfinite(r["diff"]) and not r["unstable"]:
+                a.annotate("%+.0f" % (100 * r["diff"]), (r[x], r[y]), textcoords="offset points", xytext=(0, 7),
+                           ha="center", fontsize=7)
+
+    draw(ax[0], ts, "safety", "ratio")
+    ax[0].set_xscale("log")
+    ax[0].set_yscale("log")
+    ax[0].axvline(1.0, color="0.5", ls=":")
+    ax[0].text(1.02, max(st["ratios"]), "largest Timestep Safety\nthe engine accepts", fontsize=7, va="top")
+    ax[0].scatter([DEFAULTS["safety"]], [DEFAULTS["ratio"]], marker="*", s=300, facecolors="none", edgecolors="b",
+                  label="defaults")
+    ax[0].set_xlabel("Timestep Safety (above 1: forced, x the critical timestep)")
+    ax[0].set_ylabel("Bond Modulus / grain Young's Modulus")
+    ax[0].set_title("unconfined, %g x Suggested Strain Rate; %% = UCS vs smallest safety" % st["rate_factor"], fontsize=9)
+    draw(ax[1], sv, "alpha", "damping")
+    ax[1].scatter([DEFAULTS["alpha"]], [DEFAULTS["damping"]], marker="*", s=300, facecolors="none", edgecolors="b",
+                  label="defaults")
+    ax[1].set_xscale("log")
+    ax[1].set_xlabel("Servo Alpha")
+    ax[1].set_ylabel("Settling Damping")
+    ax[1].set_title("triaxial %g Pa, Timestep Safety %g; %% = sigma1 vs defaults" % (st["sigma3"], st["servo_safety"]),
+                    fontsize=9)
+    ax[0].legend(fontsize=7, loc="lower left")
+    fig.suptitle("Stability map, %d grains, stiff-bond rock" % cfg["particles"])
+    image = save_chart(fig, out, "atlas_stability.png")
+
+    def cell(r):
+        if r["refused"]:
+            return "refused"
+        if r["unstable"]:
+            return "**unstable, stopped**" if r["detected"] else "**UNSTABLE, not stopped** (%d bonds broken in 50 steps)" \
+                % r["broken_first"]
+        return "%+.1f %%" % (100 * r["diff"]) if math.isfinite(r["diff"]) else "-"
+
+    safeties = sorted(set(r["safety"] for r in ts))
+    ts_table = table(["Bond Modulus / Young's Modulus", "critical timestep (s)"] + ["%g" % v for v in safeties],
+                     [["%g" % ratio, "%.3g" % smallest[ratio]["critical"]] +
+                      [next((cell(r) for r in ts if r["ratio"] == ratio and r["safety"] == v), "") for v in safeties]
+                      for ratio in sorted(smallest)])
+    alphas = sorted(set(r["alpha"] for r in sv))
+    sv_table = table(["Settling Damping"] + ["Servo Alpha %g" % a for a in alphas],
+                     [["%g" % d] + [next(("%s; sigma1 %.4g Pa; servo error max %.2f %%, mean %.2f %%; %d steps" % (
+                         cell(r), r["peak"], 100 * r["servo_max"], 100 * r["servo_mean"], r["steps"])
+                         for r in sv if r["damping"] == d and r["alpha"] == a), "") for a in alphas]
+                      for d in sorted(set(r["damping"] for r in sv))])
+    messages = sorted(set(re.sub(r"particle \d+", "particle N", re.sub(r"[-+0-9.e]+ s", "... s", r["message"]))
+                          for r in detected))
+    text = ("Commands: `rockdem_bench_rock %s` and `rockdem_bench_rock %s` (%s; %s; %s).\n\n"
+            "**Counts: %d runs, %d unstable, %d of them detected (stopped by the engine with its message, the model "
+            "at its last good state), %d runs whose output held a non-finite value.**\n\n"
+            "Timestep Safety against the bond-to-contact stiffness ratio (unconfined compression; each cell the UCS "
+            "against the smallest Timestep Safety of its row, or what went wrong):\n\n%s\n\n"
+            "Settling Damping against Servo Alpha (triaxial, Confining Stress %g Pa; each cell sigma1 at the peak "
+            "against the defaults, Settling Damping %g and Servo Alpha %g):\n\n%s\n\n"
+            "The engine's messages (numbers elided): %s") % (
+        " ".join(ts_args), " ".join(servo_args), machine(), ts_note, sv_note, len(rows), len(unstable), len(detected),
+        len(nonfinite), ts_table, st["sigma3"], DEFAULTS["damping"], DEFAULTS["alpha"], sv_table,
+        "; ".join("\"%s\"" % m for m in messages) if messages else "none")
+    print("atlas: stability: %d runs, %d unstable, %d detected, %d with a non-finite output"
+          % (len(rows), len(unstable), len(detected), len(nonfinite)), flush=True)
+    if nonfinite:
+        sys.exit("atlas: FAILED: a non-finite value reached the output of %d run(s)" % len(nonfinite))
+    numbers = [{k: v for k, v in r.items() if k in ("peak", "servo_max", "seconds", "timestep")} for r in rows]
+    return text, numbers, [image]
+
+
+def bonded_args(cfg, factor, extra):
+    args = ["--particles", str(cfg["particles"]), "--threads", "1", "--tests", "rates", "--rate-factors",
+            "%g" % factor] + extra + ROCK
+    return args
+
+
+def timestep_bonded_section(bench, cfg, work, out):
+    """UCS, E, steps and run time at each Timestep Safety on the cemented specimen (error against the smallest)."""
+    rows, notes = [], []
+    for safety in cfg["bonded_safeties"]:
+        args = bonded_args(cfg, cfg["bonded_factor"], ["--safety", "%g" % safety])
+        r, note = run(bench, args, work, "timestep_bonded_%g" % safety, cfg is FULL)
+        r[0]["safety"] = safety
+        rows.append(r[0])
+        notes.append(note)
+    ref = rows[0]
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    s = [r["safety"] for r in rows]
+    ax[0].semilogx(s, [pct(r["ucs"], ref["ucs"]) for r in rows], "o-", label="UCS")
+    ax[0].semilogx(s, [pct(r["E"], ref["E"]) for r in rows], "s--", label="E")
+    ax[0].axhspan(-2, 2, color="0.9")
+    ax[0].axvline(DEFAULTS["safety"], color="b", ls=":")
+    ax[0].set_xlabel("Timestep Safety")
+    ax[0].set_ylabel("difference from Timestep Safety %g (%%)" % ref["safety"])
+    ax[0].legend()
+    ax[1].loglog([r["steps"] for r in rows], [r["seconds"] for r in rows], "o-")
+    for r in rows:
+        ax[1].annotate("%g" % r["safety"], (r["steps"], r["seconds"]), textcoords="offset points", xytext=(4, 4),
+                       fontsize=8)
+    ax[1].set_xlabel("steps")
+    ax[1].set_ylabel("run time (s)")
+    fig.suptitle("Timestep Safety on the cemented specimen, %d grains, %g x the Suggested Strain Rate"
+                 % (cfg["particles"], cfg["bonded_factor"]))
+    image = save_chart(fig, out, "atlas_timestep_bonded.png")
+    body = table(["Timestep Safety", "timestep (s)", "UCS (Pa)", "UCS vs smallest", "E (Pa)", "E vs smallest",
+                  "strain at peak", "steps", "run time (s)"],
+                 [["%g" % r["safety"], "%.3g" % r["timestep"], "%.5g" % r["ucs"], "%+.2f %%" % pct(r["ucs"], ref["ucs"]),
+                   "%.4g" % r["E"], "%+.2f %%" % pct(r["E"], ref["E"]), "%.4g" % r["peak_strain"], "%d" % r["steps"],
+                   "%.1f" % r["seconds"]] for r in rows])
+    text = "Command: `rockdem_bench_rock %s` with `--safety` each of %s (%s; %s).\n\n%s" % (
+        " ".join(bonded_args(cfg, cfg["bonded_factor"], ["--safety", "S"])),
+        ", ".join("%g" % v for v in cfg["bonded_safeties"]), machine(), "; ".join(notes), body)
+    return text, rows, [image]
+
+
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
     page = ""
@@ -264,14 +486,16 @@ def main():
     parser.add_argument("--out", default=os.path.join(HERE, "..", "Documentation"))
     parser.add_argument("--work", default=None)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", default="rates,modulus,threads", help="sections to run (comma list)")
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded",
+                        help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
     work = o.work or os.path.join(o.out, "atlas_runs")
     os.makedirs(os.path.join(o.out, "images"), exist_ok=True)
     os.makedirs(work, exist_ok=True)
     sections, numbers, images = {}, [], []
-    makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section}
+    makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section,
+              "stability": stability_section, "timestep_bonded": timestep_bonded_section}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text

@@ -6,6 +6,8 @@
 #include "dem/LoadTest.h"
 #include "dem/Model.h"
 
+#include "SlotLookup.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -167,6 +169,74 @@ std::string strainRateAdvice(double strainRate, double suggested)
       fmt(FastRateFactor * suggested) + " 1/s for a strength.";
   }
   return "";
+}
+
+double bondToContactStiffnessRatio(const Model& model)
+{
+  const Bonds& b = model.bonds;
+  const Particles& p = model.particles;
+  if (!(model.material.youngsModulus > 0.0)) {
+    return 0.0;
+  }
+  const SlotLookup slots(p);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const long i = slots.find(b.idA[k]);
+    const long j = slots.find(b.idB[k]);
+    if (b.broken(k) || i < 0 || j < 0) {
+      continue;
+    }
+    sum += b.normalStiffness[k] * (p.radius[static_cast<std::size_t>(i)] + p.radius[static_cast<std::size_t>(j)]);
+    ++n;
+  }
+  return n ? sum / static_cast<double>(n) / model.material.youngsModulus : 0.0;
+}
+
+std::string timestepSafetyAdvice(double safety, double bondToContact, double settlingDamping)
+{
+  const bool measured = bondToContact >= MeasuredBondToContactMin && bondToContact <= MeasuredBondToContactMax &&
+    settlingDamping >= MeasuredSettlingDamping;
+  const double boundary = measured ? CementedUnstableTimestepSafety : SweepUnstableTimestepSafety;
+  if (!(safety > 0.5 * boundary)) {
+    return "";
+  }
+  std::string basis;
+  if (measured) {
+    basis = "the atlas's stability map measured cemented specimens (Bond Modulus / Young's Modulus " +
+      fmt(MeasuredBondToContactMin) + " to " + fmt(MeasuredBondToContactMax) + ", Settling Damping " +
+      fmt(MeasuredSettlingDamping) + ") stable to 1.5 x the critical timestep and unstable from " + fmt(boundary) +
+      " x";
+  } else {
+    basis = std::string(bondToContact > 0.0 ? "this model (Bond Modulus / Young's Modulus " + fmt(bondToContact) +
+                                                ", Settling Damping " + fmt(settlingDamping) + ") is outside what the "
+                                                "stability map measured, so the boundary of"
+                                            : "for grains without bonds") +
+      " the Timestep Safety sweep applies: impacts and a settling pack unstable from " + fmt(boundary) +
+      " x the critical timestep, impact errors of 5-18 % at 0.7 x";
+  }
+  return "Timestep Safety " + fmt(safety) + " is within a factor 2 of the stability boundary (" + basis +
+    "; Documentation/SpeedAccuracy.md, \"Stability map\", and Benchmarks-Solver.md section 3). Advised range of Timestep "
+    "Safety: up to " + fmt(0.5 * boundary) + " (default 0.1).";
+}
+
+std::string slowStrainRateAdvice(double strainRate, double suggested, double timestep, double strain)
+{
+  if (!(suggested > 0.0) || !(strainRate > 0.0) || !(timestep > 0.0) || !(strain > 0.0)) {
+    return "";
+  }
+  const double ratio = strainRate / suggested;
+  if (ratio >= SlowRateFactor) {
+    return "";
+  }
+  const double steps = strain / (strainRate * timestep);
+  const double stepsAtSuggestion = strain / (suggested * timestep);
+  return "Strain Rate " + fmt(strainRate) + " 1/s is 1/" + fmt(1.0 / ratio) + " of the Suggested Strain Rate " +
+    fmt(suggested) + " 1/s: reaching Max Strain " + fmt(strain) + " takes " + fmt(steps) + " steps of " +
+    fmt(timestep) + " s, " + fmt(1.0 / ratio) + " x the " + fmt(stepsAtSuggestion) +
+    " steps at the suggestion, for a test already quasi-static there (the atlas measured the UCS 6.7 % lower at "
+    "1/4 of the suggestion, nothing slower than 1/16; Documentation/SpeedAccuracy.md). Advised range of Strain Rate: " +
+    fmt(SlowRateFactor * suggested) + " to " + fmt(FastRateFactor * suggested) + " 1/s.";
 }
 
 } // namespace dem

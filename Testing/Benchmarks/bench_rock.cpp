@@ -23,12 +23,27 @@
 //     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
 //     peaks and Mohr-Coulomb fit ("envelope" lines, read by scripts/plot_envelopes.py);
 //     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
+//   rockdem_bench_rock --tests tsmap --safeties 0.05,0.3,1,2 --bond-ratios 0.1,1,10,100 [--rate-factor 16]
+//   rockdem_bench_rock --tests servomap --dampings 0,0.7,0.95 --servo-alphas 0.05,0.5,1 [--rate-factor 16]
+//     the stability map of Documentation/SpeedAccuracy.md: tsmap, unconfined tests at each
+//     Timestep Safety (above 1: that multiple of the critical timestep, forced) on a specimen
+//     cemented at each Bond Modulus / grain Young's modulus ratio; servomap, triaxial tests
+//     (--sigma3's first value) at each Settling Damping and Servo Alpha (at --safety, on the
+//     specimen cemented at --bond-modulus); one "stability:" line each with
+//     whether the engine stopped the run (InstabilityError, its message on the next line),
+//     the peak, the confining stress error of the servo, the largest grain speed against the
+//     P-wave speed sqrt(E / density), and the count of non-finite values in what the run
+//     left (every sample's measurements, the model after the run: particles, walls, bonds,
+//     test history), which must be 0.
+//   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --servo-alpha A; --max-steps N
+//     stops a test after N steps; --to-max-strain: the stability runs go on to Max Strain.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
 //     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
 #include "dem/Cement.h"
+#include "dem/Errors.h"
 #include "dem/Fractures.h"
 #include "dem/LoadTest.h"
 #include "dem/Membrane.h"
@@ -82,6 +97,14 @@ struct Options {
   double damping = 0.7;
   double maxStrain = 0.03;
   double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
+  double bondModulus = 0.0;     // Pa; 0: --modulus
+  double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
+  double maxSteps = 0.0;        // > 0: a test stops after this many steps
+  bool probeToMaxStrain = false; // --tests stability: run every test to Max Strain (no stop after the peak)
+  std::vector<double> safeties{ 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5 }; // --tests stability
+  std::vector<double> bondRatios{ 0.1, 1.0, 10.0, 100.0 };                // x --modulus
+  std::vector<double> dampings{ 0.0, 0.3, 0.7, 0.9, 0.95 };
+  std::vector<double> servoAlphas{ 0.05, 0.2, 0.5, 1.0 };
   std::string tests = "ucs,tension";
   std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
   std::vector<double> sigma3{ 1e6, 2e6, 4e6 };     // Pa, --tests envelopes
@@ -106,7 +129,8 @@ Options parse(int argc, char** argv)
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
-    { "--inertial-target", &o.inertialTarget } };
+    { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
+    { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -119,6 +143,14 @@ Options parse(int argc, char** argv)
       o.confining = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--rate-factors" && i + 1 < argc) {
       o.rateFactors = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--safeties" && i + 1 < argc) {
+      o.safeties = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--bond-ratios" && i + 1 < argc) {
+      o.bondRatios = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--dampings" && i + 1 < argc) {
+      o.dampings = rockdem_bench::parseList<double>(argv[++i]);
+    } else if (a == "--servo-alphas" && i + 1 < argc) {
+      o.servoAlphas = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--sigma3" && i + 1 < argc) {
       o.sigma3 = rockdem_bench::parseList<double>(argv[++i]);
     } else if (a == "--specimen" && i + 1 < argc) {
@@ -131,6 +163,8 @@ Options parse(int argc, char** argv)
       o.threads = std::atoi(argv[++i]);
     } else if (a == "--profile") {
       o.profile = true;
+    } else if (a == "--to-max-strain") {
+      o.probeToMaxStrain = true;
     } else if (a == "--length-stiffness") {
       o.lengthStiffness = true;
     } else {
@@ -205,7 +239,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   cp.bondRange = o.range;
   cp.gapTolerance = o.gap;
   cp.bondRadiusMultiplier = o.multiplier;
-  cp.bondModulus = o.modulus;
+  cp.bondModulus = o.bondModulus > 0.0 ? o.bondModulus : o.modulus;
   cp.bondStiffnessRatio = o.ratio;
   cp.tensileStrength = o.tensile;
   cp.cohesion = o.cohesion;
@@ -538,6 +572,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   s.maxStrain = o.maxStrain;
   s.sampleInterval = 50;
   s.platenFriction = mode == TestMode::Tension ? 0.0 : o.platenFriction;
+  s.servoAlpha = o.servoAlpha;
   startLoadTest(m, s);
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
@@ -558,7 +593,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   std::size_t peakSample = 0;
   BreakTracker breaks(m);
   bool fallen = false;
-  while (m.test.stage != TestStage::Done && !fallen) {
+  while (m.test.stage != TestStage::Done && !fallen && !(o.maxSteps > 0.0 && r.steps >= o.maxSteps)) {
     run.advance(s.sampleInterval);
     r.steps += s.sampleInterval;
     if (analyse) {
@@ -738,6 +773,170 @@ void dumpSpecimen(const Model& m, const std::string& path)
   std::fclose(f);
 }
 
+/// One run of the stability map: a test at Timestep Safety `safety` (above 1: that multiple
+/// of the critical timestep, forced with allowUnsafeTimestep), Settling Damping `damping`
+/// and Servo Alpha `alpha`, at --rate-factor x the Suggested Strain Rate, until the stress
+/// has fallen after its peak (compression 70 %, triaxial 80 %), the test ends, --max-steps,
+/// or the engine stops it (InstabilityError).
+struct ProbeResult {
+  bool stopped = false;          // the engine threw InstabilityError
+  std::string message;           // its message
+  bool lastGood = true;          // after a stop: the model is at the step before the failed advance()
+  double timestep = 0.0, critical = 0.0; // s
+  double peak = 0.0, peakStrain = 0.0;   // Pa (triaxial: sigma1), -
+  std::int64_t steps = 0;
+  double servoMax = 0.0, servoMean = 0.0; // |lateral - sigma3| / sigma3 over the shear samples to the peak
+  double maxStress = 0.0;        // Pa, largest |axial| or |lateral| stress of any sample
+  double maxSpeed = 0.0;         // m/s, largest grain speed of any sample
+  std::size_t nonFinite = 0;     // non-finite values in the samples and in the model after the run
+  std::size_t brokenFirst = 0;   // bonds broken after the first sample (50 steps; a stable run breaks none there)
+  std::size_t broken = 0, bonds = 0; // broken bonds at the end, bonds
+  bool settled = false;          // triaxial: the consolidation ended
+  bool peaked = false;
+  double seconds = 0.0;
+};
+
+std::size_t countNonFinite(const Model& m)
+{
+  std::size_t n = 0;
+  const auto vec = [&n](const std::vector<Vec3>& v) {
+    for (const Vec3& x : v) {
+      n += !x.allFinite();
+    }
+  };
+  const auto num = [&n](const std::vector<double>& v) {
+    for (double x : v) {
+      n += !std::isfinite(x);
+    }
+  };
+  vec(m.particles.position);
+  vec(m.particles.velocity);
+  vec(m.particles.angularVelocity);
+  num(m.bonds.normalForce);
+  vec(m.bonds.shearForce);
+  vec(m.bonds.bendingMoment);
+  for (const Wall& w : m.walls) {
+    n += !std::isfinite(w.position) + !std::isfinite(w.velocity);
+  }
+  for (const auto& row : m.test.history) {
+    for (double x : row) {
+      n += !std::isfinite(x);
+    }
+  }
+  return n;
+}
+
+ProbeResult probeRun(Model m, TestMode mode, double confining, const Options& o, double safety, double damping,
+                     double alpha)
+{
+  ProbeResult r;
+  const auto start = std::chrono::steady_clock::now();
+  m.solver.settlingDamping = damping;
+  r.critical = criticalTimestep(m, m.solver.contactLaw);
+  if (safety > 1.0) {
+    m.solver.timestepSafety = 1.0;
+    m.solver.requestedTimestep = safety * r.critical;
+    m.solver.allowUnsafeTimestep = true;
+  } else {
+    m.solver.timestepSafety = safety;
+  }
+  LoadTestSettings s;
+  s.mode = mode;
+  s.axis = 2;
+  s.confiningStress = confining > 0.0 ? confining : 1e6;
+  s.maxStrain = o.maxStrain;
+  s.sampleInterval = 50;
+  s.servoAlpha = alpha;
+  s.platenFriction = o.platenFriction;
+  startLoadTest(m, s);
+  s.strainRate = (o.rateFactor > 0.0 ? o.rateFactor : 16.0) * suggestedStrainRate(m, s);
+  startLoadTest(m, s);
+  double servoSum = 0.0;
+  std::size_t servoSamples = 0;
+  try {
+    Simulation run(m);
+    r.timestep = run.timestep();
+    while (m.test.stage != TestStage::Done && !(o.maxSteps > 0.0 && r.steps >= o.maxSteps)) {
+      const std::int64_t before = m.clock.step;
+      try {
+        run.advance(s.sampleInterval);
+      } catch (const InstabilityError& e) {
+        r.stopped = true;
+        r.message = e.what();
+        r.lastGood = m.clock.step == before;
+        break;
+      }
+      r.steps += s.sampleInterval;
+      if (r.steps == s.sampleInterval) {
+        r.brokenFirst = countBonds(m.bonds).broken;
+      }
+      const TestMeasurements me = run.measurements();
+      for (double x : { me.axialStress, me.lateralStress, me.deviatorStress, me.meanStress, me.volumetricStrain,
+                        me.inertialNumber, me.suggestedStrainRate, me.strain[0], me.strain[1], me.strain[2] }) {
+        r.nonFinite += !std::isfinite(x);
+      }
+      for (double x : me.faceStress) {
+        r.nonFinite += !std::isfinite(x);
+      }
+      r.maxStress = std::max({ r.maxStress, std::abs(me.axialStress), std::abs(me.lateralStress) });
+      for (const Vec3& v : m.particles.velocity) {
+        r.maxSpeed = std::max(r.maxSpeed, v.norm());
+      }
+      if (m.test.stage != TestStage::Shear && m.test.stage != TestStage::Done) {
+        continue;
+      }
+      r.settled = true;
+      const double sigma = me.axialStress;
+      if (sigma > r.peak) {
+        r.peak = sigma;
+        r.peakStrain = me.strain[2];
+        r.servoMean = servoSamples ? servoSum / servoSamples : 0.0;
+      }
+      if (mode == TestMode::Triaxial) {
+        const double error = std::abs(me.lateralStress - s.confiningStress) / s.confiningStress;
+        if (sigma >= r.peak) {
+          r.servoMax = std::max(r.servoMax, error);
+        }
+        servoSum += error;
+        ++servoSamples;
+      }
+      const double fall = mode == TestMode::Triaxial ? 0.8 : 0.7;
+      if (std::getenv("RB_TRACE")) {
+        std::fprintf(stderr, "  step %lld strain %.5g stress %.4g lateral %.4g speed %.3g ke %.4g broken %zu\n", static_cast<long long>(r.steps),
+                     me.strain[2], sigma, me.lateralStress, r.maxSpeed, run.diagnostics().kineticEnergy, countBonds(m.bonds).broken);
+      }
+      if (!o.probeToMaxStrain && r.peak > 0.0 && sigma < fall * r.peak && me.strain[2] > r.peakStrain) {
+        r.peaked = true;
+        break;
+      }
+    }
+  } catch (const InputError& e) {
+    r.stopped = true;
+    r.message = std::string("input refused: ") + e.what();
+  }
+  r.nonFinite += countNonFinite(m);
+  r.broken = countBonds(m.bonds).broken;
+  r.bonds = m.bonds.size();
+  r.seconds = secondsSince(start);
+  return r;
+}
+
+void printProbe(const char* map, double ratio, double safety, double damping, double alpha, const ProbeResult& r,
+                double waveSpeed)
+{
+  std::printf("stability: map %s ratio %g safety %g damping %g alpha %g timestep %.6g critical %.6g status %s "
+              "peak %.17g strain %.6g steps %lld servo-max %.6g servo-mean %.6g max-stress %.6g max-speed %.6g "
+              "wave-speed %.6g nonfinite %zu last-good %d settled %d peaked %d broken-first %zu broken %zu bonds %zu seconds %.3f\n",
+              map, ratio, safety, damping, alpha, r.timestep, r.critical, r.stopped ? "stopped" : "ran", r.peak,
+              r.peakStrain, static_cast<long long>(r.steps), r.servoMax, r.servoMean, r.maxStress, r.maxSpeed,
+              waveSpeed, r.nonFinite, r.lastGood ? 1 : 0, r.settled ? 1 : 0, r.peaked ? 1 : 0, r.brokenFirst, r.broken, r.bonds,
+              r.seconds);
+  if (r.stopped) {
+    std::printf("  message: %s\n", r.message.c_str());
+  }
+  std::fflush(stdout);
+}
+
 /// Least-squares Mohr-Coulomb fit sigma1 = a + b sigma3: prints it with the friction angle
 /// and cohesion under `label`.
 void printMohrCoulomb(const char* label, const std::vector<double>& s3, const std::vector<double>& s1);
@@ -803,6 +1002,36 @@ int main(int argc, char** argv)
                   f, u.strainRate, u.suggested, u.target, u.timestep, u.peak, u.peakStrain, u.E, u.inertialAtPeak,
                   u.ufrBeforePeak, static_cast<long long>(u.steps), u.seconds, u.peaked ? 1 : 0);
       std::fflush(stdout);
+    }
+  }
+  if (wants(o, "tsmap")) {
+    // The stability map of Documentation/SpeedAccuracy.md. 1: Timestep Safety against the
+    // Bond Modulus / grain Young's modulus ratio (a specimen cemented at each ratio from the
+    // same pack), unconfined; 2: Settling Damping against Servo Alpha, triaxial at the
+    // first --sigma3, on the specimen cemented at --bond-modulus (or --modulus).
+    const double density = m.material.density;
+    for (double ratio : o.bondRatios) {
+      Options at = o;
+      at.bondModulus = ratio * o.modulus;
+      CementReport c2;
+      CompactReport p2;
+      const Model spec = buildSpecimen(at, c2, p2);
+      const double wave = std::sqrt(std::max(o.modulus, at.bondModulus) / density);
+      for (double safety : o.safeties) {
+        printProbe("timestep", ratio, safety, o.damping, o.servoAlpha,
+                   probeRun(spec, TestMode::Compression, 0.0, o, safety, o.damping, o.servoAlpha), wave);
+      }
+    }
+  }
+  if (wants(o, "servomap")) {
+    const double density = m.material.density;
+    const double ratio = (o.bondModulus > 0.0 ? o.bondModulus : o.modulus) / o.modulus;
+    const double wave = std::sqrt(std::max(o.modulus, ratio * o.modulus) / density);
+    for (double damping : o.dampings) {
+      for (double alpha : o.servoAlphas) {
+        printProbe("servo", ratio, o.safety, damping, alpha,
+                   probeRun(m, TestMode::Triaxial, o.sigma3.front(), o, o.safety, damping, alpha), wave);
+      }
     }
   }
   double tensile = 0.0;

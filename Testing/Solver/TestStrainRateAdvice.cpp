@@ -184,3 +184,55 @@ TEST(StrainRateAdvice, AdviceAboveFourTimesTheSuggestionOnly)
   EXPECT_NE(fast.find("12.8 %"), std::string::npos) << fast;
   EXPECT_NE(fast.find("at most 4 1/s"), std::string::npos) << fast;
 }
+
+TEST(StrainRateAdvice, SlowAdviceBelowOneSixteenthOfTheSuggestionWithItsCostInSteps)
+{
+  // At 1/16 of the suggestion and above: nothing; unknown suggestion, timestep or strain: nothing.
+  EXPECT_EQ(slowStrainRateAdvice(1.0 / 16.0, 1.0, 1e-8, 0.02), "");
+  EXPECT_EQ(slowStrainRateAdvice(0.5, 1.0, 1e-8, 0.02), "");
+  EXPECT_EQ(slowStrainRateAdvice(0.01, 0.0, 1e-8, 0.02), "");
+  EXPECT_EQ(slowStrainRateAdvice(0.01, 1.0, 0.0, 0.02), "");
+  EXPECT_EQ(slowStrainRateAdvice(0.01, 1.0, 1e-8, 0.0), "");
+  // 1/100 of the suggestion: Max Strain 0.02 at 1e-8 s takes 0.02 / (0.01 x 1e-8) = 2e8 steps,
+  // 100 x the 2e6 at the suggestion; the advised range is 1/16 to 4 x the suggestion.
+  const std::string slow = slowStrainRateAdvice(0.01, 1.0, 1e-8, 0.02);
+  EXPECT_NE(slow.find("Strain Rate 0.01 1/s is 1/100 of the Suggested Strain Rate 1 1/s"), std::string::npos) << slow;
+  EXPECT_NE(slow.find("takes 2e+08 steps of 1e-08 s, 100 x the 2e+06 steps at the suggestion"), std::string::npos)
+    << slow;
+  EXPECT_NE(slow.find("Advised range of Strain Rate: 0.0625 to 4 1/s"), std::string::npos) << slow;
+  // The fast advice stays silent there, and the slow one above the suggestion.
+  EXPECT_EQ(strainRateAdvice(0.01, 1.0), "");
+  EXPECT_EQ(slowStrainRateAdvice(10.0, 1.0, 1e-8, 0.02), "");
+}
+
+TEST(StrainRateAdvice, BondToContactStiffnessRatioIsBondModulusOverYoungsModulus)
+{
+  // DEM Cement: kn = Bond Modulus / (rA + rB); the trio's bond has kn 1e10 N/m^3 between two
+  // grains of radius 1 mm: Bond Modulus 1e10 x 2e-3 = 2e7 Pa, over Young's Modulus 1e9 Pa.
+  Model m = bondedTrio(0.001, 1e6, 1e6);
+  m.material.youngsModulus = 1e9;
+  EXPECT_NEAR(bondToContactStiffnessRatio(m), 0.02, 1e-12);
+  m.bonds.failure[0] = static_cast<std::uint8_t>(BondFailure::Tension);
+  EXPECT_EQ(bondToContactStiffnessRatio(m), 0.0); // no intact bond
+}
+
+TEST(StrainRateAdvice, TimestepSafetyAdviceWithinAFactorTwoOfTheMeasuredBoundary)
+{
+  // Cemented, ratio and damping inside what the stability map measured: unstable from 2, so
+  // nothing up to the engine's cap of 1.
+  EXPECT_EQ(timestepSafetyAdvice(1.0, 1.0, 0.7), "");
+  EXPECT_EQ(timestepSafetyAdvice(1.0, 100.0, 0.9), "");
+  // Without bonds, without damping, or outside the measured ratios: the sweep's boundary 1.0,
+  // advice above 0.5.
+  EXPECT_EQ(timestepSafetyAdvice(0.5, 0.0, 0.7), "");
+  EXPECT_EQ(timestepSafetyAdvice(0.1, 1000.0, 0.0), "");
+  const std::string grains = timestepSafetyAdvice(0.8, 0.0, 0.7);
+  EXPECT_NE(grains.find("Timestep Safety 0.8 is within a factor 2 of the stability boundary"), std::string::npos)
+    << grains;
+  EXPECT_NE(grains.find("unstable from 1"), std::string::npos) << grains;
+  EXPECT_NE(grains.find("Advised range of Timestep Safety: up to 0.5 (default 0.1)"), std::string::npos) << grains;
+  const std::string undamped = timestepSafetyAdvice(0.7, 1.0, 0.0);
+  EXPECT_NE(undamped.find("Bond Modulus / Young's Modulus 1, Settling Damping 0"), std::string::npos) << undamped;
+  EXPECT_NE(undamped.find("up to 0.5"), std::string::npos) << undamped;
+  EXPECT_NE(timestepSafetyAdvice(0.6, 1000.0, 0.7), "");
+}

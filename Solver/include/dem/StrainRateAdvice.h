@@ -8,7 +8,10 @@
 // from the cement strengths, the confining stress and the grain friction before the test
 // runs, and raised to the measured stress once the test has gone past the estimate.
 // Documentation/SpeedAccuracy.md ("Suggested Strain Rate") gives the rule, the factors
-// and the chart that checks it. SI units: Pa, m, kg/m^3, 1/s.
+// and the chart that checks it. The advice DEM Load Test prints in Output Messages where
+// the settings are risky (a strain rate far above the suggestion, a Timestep Safety near
+// the stability boundary of the atlas's stability map) or wasteful (a strain rate far
+// below the suggestion) is computed here too. SI units: Pa, m, kg/m^3, 1/s.
 #pragma once
 
 #include <string>
@@ -76,13 +79,50 @@ double suggestedStrainRate(const Model& model, const LoadTestSettings& settings)
 /// Above this multiple of the Suggested Strain Rate a test is risky: the atlas measured the
 /// UCS too high there (Documentation/SpeedAccuracy.md, "Strain rate").
 constexpr double FastRateFactor = 4.0;
-/// (No advice below the suggestion: the atlas measured the UCS still falling at 0.25 x it,
-/// so a slower test is not wasted; Documentation/SpeedAccuracy.md.)
+/// Below this multiple of the Suggested Strain Rate a test is wasteful: it takes more than
+/// 16 x the steps of the suggestion, at an inertial number 16 x below the target. The atlas
+/// measured the UCS still falling at 0.25 x the suggestion (6.7 % below it), so a test
+/// between 1/16 and 1 x is not wasted; below 1/16 nothing was measured, and the cost grows
+/// as 1 / rate (Documentation/SpeedAccuracy.md, "Advice in Output Messages").
+constexpr double SlowRateFactor = 1.0 / 16.0;
 
 /// One line of advice for a test run at `strainRate` (1/s) when the suggestion is
 /// `suggested` (1/s): "" when suggested is 0 (unknown) or the rate is at most
 /// FastRateFactor x suggested; else what the atlas measured at such a rate and what to
 /// change.
 std::string strainRateAdvice(double strainRate, double suggested);
+
+/// One line of advice for a test run at `strainRate` (1/s) below SlowRateFactor x the
+/// Suggested Strain Rate `suggested` (1/s), "" otherwise (or when either is not positive):
+/// the steps it takes to reach `strain` (the Max Strain) at `timestep` (s), against those at
+/// the suggestion, and the advised range of Strain Rate (SlowRateFactor to FastRateFactor x
+/// the suggestion). "" when timestep or strain is not positive.
+std::string slowStrainRateAdvice(double strainRate, double suggested, double timestep, double strain);
+
+/// Bond Modulus / Young's Modulus of the model: the mean over its intact bonds of the
+/// bond's normal stiffness x (rA + rB) (DEM Cement: kn = Bond Modulus / (rA + rB)) over the
+/// grains' Young's Modulus. 0 without intact bonds.
+double bondToContactStiffnessRatio(const Model& model);
+
+/// The stability boundaries the atlas measured (Documentation/SpeedAccuracy.md, "Stability
+/// map"): the smallest Timestep Safety (x the engine's critical timestep) at which a run went
+/// unstable. Cemented specimens with Bond Modulus / Young's Modulus 0.1 to 100 under Settling
+/// Damping 0.7 stayed stable to 1.5 and broke their bonds to the instability from 2.
+constexpr double CementedUnstableTimestepSafety = 2.0;
+/// Bond Modulus / Young's Modulus range the map measured.
+constexpr double MeasuredBondToContactMin = 0.1;
+constexpr double MeasuredBondToContactMax = 100.0;
+/// Grains without bonds, and any model without Settling Damping (the Timestep Safety sweep
+/// of Documentation/Benchmarks-Solver.md section 3, undamped impacts and an undamped elastic
+/// system: unstable at 1.0), and a cemented model outside the measured ratio range.
+constexpr double SweepUnstableTimestepSafety = 1.0;
+/// The Settling Damping of the cemented map; below it the undamped boundary applies.
+constexpr double MeasuredSettlingDamping = 0.7;
+
+/// One line of advice when Timestep Safety `safety` is within a factor 2 of the measured
+/// stability boundary for a model with Bond Modulus / Young's Modulus `bondToContact` (0: no
+/// intact bonds) under Settling Damping `settlingDamping`: the boundary, what it rests on, and
+/// the advised range (at most half the boundary). "" otherwise.
+std::string timestepSafetyAdvice(double safety, double bondToContact, double settlingDamping);
 
 } // namespace dem
