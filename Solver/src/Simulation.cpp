@@ -672,18 +672,20 @@ void Simulation::accumulateWork(const StabilityReport& report)
     lastWallPosition_[w] = report.wallPosition[w];
     lastWallForce_[w] = report.wallForce[w];
   }
-  if (!lastMembraneForce_.empty()) {
+  if (particleDrivers(model_)) {
     // The membrane and the tension platen act on single grains: the same rule per grain.
     // (The membrane runs on the CPU only; a tension test on the GPU downloads its state here.)
     std::vector<Vec3> force;
     drivenForces(model_, backend_->sync(), force);
     const Particles& p = model_.particles;
-    for (std::size_t i = 0; i < p.size() && i < force.size(); ++i) {
-      if (!force[i].isZero(0.0) || !lastMembraneForce_[i].isZero(0.0)) {
-        boundaryWork_ += 0.5 * (lastMembraneForce_[i] + force[i]).dot(p.position[i] - lastMembranePosition_[i]);
+    if (lastMembranePosition_.size() == p.size() && lastMembraneForce_.size() == p.size()) {
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!force[i].isZero(0.0) || !lastMembraneForce_[i].isZero(0.0)) {
+          boundaryWork_ += 0.5 * (lastMembraneForce_[i] + force[i]).dot(p.position[i] - lastMembranePosition_[i]);
+        }
       }
-      lastMembranePosition_[i] = p.position[i];
     }
+    lastMembranePosition_ = p.position; // (a driver that starts here counts from here)
     lastMembraneForce_.swap(force);
   }
 }

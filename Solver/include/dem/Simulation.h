@@ -156,8 +156,8 @@ private:
   std::int64_t startStep_ = 0;                ///< the clock's step when this Simulation started
   std::array<double, 6> lastWallPosition_{};  ///< m, at the last check
   std::array<double, 6> lastWallForce_{};     ///< N, axis component of the particles' push, at the last check
-  std::vector<Vec3> lastMembranePosition_;    ///< m, at the last check (membrane runs)
-  std::vector<Vec3> lastMembraneForce_;       ///< N, the membrane's push on each particle at the last check
+  std::vector<Vec3> lastMembranePosition_;    ///< m, at the last check (membrane and tension runs)
+  std::vector<Vec3> lastMembraneForce_;       ///< N, the push of the membrane or tension platen on each particle at the last check
   bool broken_ = false;                 ///< an instability stopped the run
 };
 
