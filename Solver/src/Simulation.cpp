@@ -293,6 +293,7 @@ Simulation::Simulation(Model& model, SolverDevice device)
   gravityWorkAtStart_ = periodicGravityWork(model);
   gravityPotentialAtStart_ = gravityPotential(model);
   startStep_ = model.clock.step;
+  earlyChecks_ = model.test.settings.mode != TestMode::Off;
   for (std::size_t w = 0; w < model.walls.size() && w < 6; ++w) {
     lastWallPosition_[w] = model.walls[w].position;
     lastWallForce_[w] = model.walls[w].force[model.walls[w].axis];
@@ -608,7 +609,7 @@ void Simulation::advance(std::int64_t steps)
       std::int64_t chunk = std::min<std::int64_t>(steps - done, 64 - (model_.clock.step & 63));
       chunk = std::min(chunk, stepsToNextSample());
       const std::int64_t since = model_.clock.step - startStep_;
-      if (since >= 0 && since < 32) {
+      if (earlyChecks_ && since >= 0 && since < 32) {
         std::int64_t next = 1;
         while (next <= since) {
           next *= 2;
@@ -619,7 +620,7 @@ void Simulation::advance(std::int64_t steps)
       done += chunk;
       sampleLoadTest(chunk);
       const std::int64_t after = model_.clock.step - startStep_;
-      if ((model_.clock.step & 63) == 0 || (after > 0 && after <= 32 && (after & (after - 1)) == 0)) {
+      if ((model_.clock.step & 63) == 0 || (earlyChecks_ && after > 0 && after <= 32 && (after & (after - 1)) == 0)) {
         checkStability("during the run");
       }
     }
@@ -732,7 +733,7 @@ void Simulation::checkStability(const char* when)
   // instability into broken bonds with little kinetic energy left). It needs the contact
   // state, so only there (a GPU run downloads it six times per Simulation).
   const std::int64_t since = model_.clock.step - startStep_;
-  const bool early = since > 0 && since <= 32 && (since & (since - 1)) == 0;
+  const bool early = earlyChecks_ && since > 0 && since <= 32 && (since & (since - 1)) == 0;
   double measured = report.kineticEnergy;
   if (early) {
     measured = totalEnergy() - gravitationalEnergy(model_);
