@@ -556,10 +556,46 @@ DfnReading readDfn(const Model& m)
   return r;
 }
 
+/// The specimen a test leaves, for --dump: the model at the end (its displacements those of
+/// the test only) and two earlier frames, to read the deformation after the peak (the
+/// increment from the peak, or from 90 % of it, to the end) rather than the cumulative
+/// damage: each grain's displacement from the start of the test to the start of the shear
+/// stage (the first sample of it: the end of the consolidation), to the peak and to the first
+/// sample after it where the stress has fallen to 90 % of the peak, which bonds were broken
+/// at the peak, and (under the membrane) which grains formed the surface at the start of the
+/// shear stage, the peak and the end.
+struct FailedSpecimen {
+  Model end;
+  std::vector<Vec3> toShear, toPeak, toFall;  // m, displacement during the test (toFall empty: never at 90 %)
+  std::vector<std::uint8_t> brokenAtPeak;     // per bond
+  std::vector<std::uint8_t> surface;          // per grain: 1 at the start of shear, 2 at the peak, 4 at the end
+  double peakStrain = 0.0, fallStrain = 0.0, endStrain = 0.0;
+  double peakStress = 0.0, fallStress = 0.0, endStress = 0.0; // Pa
+};
+
+/// Sets `bit` in `surface` for every grain the membrane pushes now (nothing without a membrane).
+void markSurface(const Model& m, std::vector<std::uint8_t>& surface, std::uint8_t bit)
+{
+  surface.resize(m.particles.size(), 0);
+  for (std::uint8_t& s : surface) {
+    s &= static_cast<std::uint8_t>(~bit);
+  }
+  if (!membraneActive(m)) {
+    return;
+  }
+  std::vector<Vec3> forces;
+  membraneSurface(m, &forces);
+  for (std::size_t i = 0; i < forces.size() && i < surface.size(); ++i) {
+    if (forces[i].squaredNorm() > 0.0) {
+      surface[i] |= bit;
+    }
+  }
+}
+
 /// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
 /// tension), the shear stage's max strain, or the test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
-                   Confinement confinement = Confinement::RigidWalls, Model* failed = nullptr)
+                   Confinement confinement = Confinement::RigidWalls, FailedSpecimen* failed = nullptr)
 {
   const Model start0 = m;
   TestResult r;
@@ -588,7 +624,19 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   r.timestep = sim.timestep();
   startLoadTest(m, s); // again, with the rate that gives the strain per step
   const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
+  const auto displacementSinceStart = [&]() {
+    std::vector<Vec3> u(m.particles.size());
+    for (std::size_t i = 0; i < u.size() && i < startPosition.size(); ++i) {
+      u[i] = m.particles.position[i] - startPosition[i];
+    }
+    return u;
+  };
   Simulation run(m);
+  if (failed) {
+    failed->surface.clear();
+    failed->toFall.clear();
+    failed->toShear.clear();
+  }
   std::vector<double> strain, stress, lateral, gauge, ufr;
   std::size_t peakSample = 0;
   BreakTracker breaks(m);
@@ -601,6 +649,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     if (m.test.stage != TestStage::Shear) {
       continue;
+    }
+    if (failed && failed->toShear.empty()) {
+      failed->toShear = displacementSinceStart(); // the first sample of the shear stage
+      markSurface(m, failed->surface, 1);
     }
     const TestMeasurements me = run.measurements();
     const double sign = mode == TestMode::Tension ? -1.0 : 1.0;
@@ -625,6 +677,26 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       }
       r.inertialAtPeak = me.inertialNumber;
       peakSample = ufr.size();
+      if (failed) {
+        failed->toPeak = displacementSinceStart();
+        failed->brokenAtPeak.assign(m.bonds.size(), 0);
+        for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+          failed->brokenAtPeak[k] = m.bonds.broken(k) ? 1 : 0;
+        }
+        markSurface(m, failed->surface, 2);
+        failed->peakStrain = e;
+        failed->peakStress = sigma;
+        failed->toFall.clear(); // a new peak: the fall to 90 % is still to come
+      }
+    }
+    if (failed && failed->toFall.empty() && r.peak > 0.0 && sigma <= 0.9 * r.peak && e > r.peakStrain) {
+      failed->toFall = displacementSinceStart();
+      failed->fallStrain = e;
+      failed->fallStress = sigma;
+    }
+    if (failed) {
+      failed->endStrain = e;
+      failed->endStress = sigma;
     }
     if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
@@ -666,11 +738,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   }
   r.seconds = secondsSince(start);
   if (failed) {
-    *failed = m;
+    failed->end = m;
     // The displacements of this test only (slots do not change during a test).
-    for (std::size_t i = 0; i < failed->particles.size() && i < startPosition.size(); ++i) {
-      failed->particles.displacement[i] = failed->particles.position[i] - startPosition[i];
-    }
+    failed->end.particles.displacement = displacementSinceStart();
+    markSurface(m, failed->surface, 4);
   }
   return r;
 }
@@ -746,31 +817,63 @@ BrazilianRun runBrazilian(Model m, const Options& o)
   return r;
 }
 
-/// Writes the failed membrane specimen for scripts/plot_envelopes.py: one line per
-/// particle (x, y, z, radius, and its displacement during the test dx, dy, dz; m) and per
-/// broken bond (kind tension or shear, its failure position).
-void dumpSpecimen(const Model& m, const std::string& path)
+/// Writes a failed specimen for scripts/plot_envelopes.py and scripts/plot_localisation.py:
+/// one line per particle (x, y, z, radius at the end; its displacement during the test dx,
+/// dy, dz; to the peak px, py, pz; to the fall to 90 % of the peak fx, fy, fz, or the end's
+/// when the stress never fell that far; to the start of the shear stage sx, sy, sz; m;
+/// `surface`, the membrane's surface grain at the start of shear 1, peak 2, end 4, summed) and per broken bond (kind tension or shear, its failure
+/// position; `after_peak` 1 when it broke after the peak). Written to a temporary file and
+/// renamed, so a failed write leaves no half file.
+void dumpSpecimen(const FailedSpecimen& s, const std::string& path)
 {
-  FILE* f = std::fopen(path.c_str(), "w");
+  const Model& m = s.end;
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f) {
-    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    std::fprintf(stderr, "cannot write %s\n", tmp.c_str());
     return;
   }
-  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz\n");
+  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz,px,py,pz,fx,fy,fz,sx,sy,sz,surface,after_peak\n");
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     const Vec3& x = m.particles.position[i];
     const Vec3& u = m.particles.displacement[i];
-    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", x.x(), x.y(), x.z(), m.particles.radius[i],
-                 u.x(), u.y(), u.z());
+    const Vec3 p = i < s.toPeak.size() ? s.toPeak[i] : u;
+    const Vec3 q = i < s.toFall.size() ? s.toFall[i] : u;
+    const Vec3 c = i < s.toShear.size() ? s.toShear[i] : Vec3(0.0, 0.0, 0.0);
+    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,0\n",
+                 x.x(), x.y(), x.z(), m.particles.radius[i], u.x(), u.y(), u.z(), p.x(), p.y(), p.z(), q.x(), q.y(),
+                 q.z(), c.x(), c.y(), c.z(), i < s.surface.size() ? static_cast<int>(s.surface[i]) : 0);
   }
   for (std::size_t k = 0; k < m.bonds.size(); ++k) {
     if (m.bonds.broken(k)) {
       const Vec3& x = m.bonds.failurePosition[k];
       const bool tension = m.bonds.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
-      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0\n", tension ? "tension" : "shear", x.x(), x.y(), x.z());
+      const bool afterPeak = k >= s.brokenAtPeak.size() || !s.brokenAtPeak[k];
+      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,%d\n", tension ? "tension" : "shear", x.x(), x.y(),
+                   x.z(), afterPeak ? 1 : 0);
     }
   }
+  const bool ok = std::fflush(f) == 0 && !std::ferror(f);
   std::fclose(f);
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+  }
+}
+
+/// The frames of a dump on one line: strain and stress at the peak, at the fall to 90 % of
+/// it and at the end, and the bonds broken by each.
+void printFrames(const char* label, const FailedSpecimen& s)
+{
+  std::size_t atPeak = 0;
+  for (std::uint8_t b : s.brokenAtPeak) {
+    atPeak += b;
+  }
+  std::printf("%s frames: peak strain %.5g stress %.5g Pa (%zu bonds broken); 90 %% %s strain %.5g stress %.5g Pa; "
+              "end strain %.5g stress %.5g Pa (%zu broken of %zu)\n",
+              label, s.peakStrain, s.peakStress, atPeak, s.toFall.empty() ? "not reached, end" : "at",
+              s.toFall.empty() ? s.endStrain : s.fallStrain, s.toFall.empty() ? s.endStress : s.fallStress,
+              s.endStrain, s.endStress, countBonds(s.end.bonds).broken, s.end.bonds.size());
 }
 
 /// One run of the stability map: a test at Timestep Safety `safety` (above 1: that multiple
@@ -966,7 +1069,7 @@ int main(int argc, char** argv)
 
   double ucs = 0.0;
   if (wants(o, "ucs")) {
-    Model failed;
+    FailedSpecimen failed;
     const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed);
     if (!o.dump.empty()) {
       dumpSpecimen(failed, o.dump + "/ucs_failed.csv"); // the frame at 70 % of the peak
@@ -1087,7 +1190,7 @@ int main(int argc, char** argv)
       }
       std::vector<double> s3, s1;
       for (std::size_t k = 0; k < o.sigma3.size(); ++k) {
-        Model failed;
+        FailedSpecimen failed;
         const bool last = k + 1 == o.sigma3.size();
         const TestResult t = runTest(spec, TestMode::Triaxial, o.sigma3[k], o, false,
                                      cylinder ? Confinement::Membrane : Confinement::RigidWalls,
@@ -1098,12 +1201,13 @@ int main(int argc, char** argv)
                     o.sigma3[k], t.peak, t.peakStrain, t.broken, t.peaked ? "peak" : "no-peak",
                     static_cast<long long>(t.steps), t.seconds);
         if (cylinder && last) {
-          const MembraneSurface ms = membraneSurface(failed);
+          const MembraneSurface ms = membraneSurface(failed.end);
           std::printf("membrane after the test at %.4g Pa: radius %.5g m, spread %.4g m (%.2f %%), min %.5g, max %.5g m\n",
                       o.sigma3[k], ms.radius, ms.radiusSpread, 100.0 * ms.radiusSpread / ms.radius, ms.minRadius,
                       ms.maxRadius);
           if (!o.dump.empty()) {
             dumpSpecimen(failed, o.dump + "/membrane_failed.csv");
+            printFrames("membrane", failed);
           }
         }
         std::fflush(stdout);

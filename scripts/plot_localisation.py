@@ -1,0 +1,286 @@
+#!/usr/bin/env python3
+"""Localisation after the peak in a failed cylinder (Documentation/Specimens.md, "After
+failure"): the deformation after the peak rather than the cumulative cracks.
+
+    scripts/plot_localisation.py DIR/membrane_failed.csv -o PREFIX [--title TEXT]
+
+Reads the dump of `rockdem_bench_rock --tests envelopes --specimen cylinder --dump DIR`
+(one line per grain: position at the end, displacement during the test d, to the start of
+the shear stage s, to the peak p, to the fall to 90 % of the peak f, membrane surface flags;
+one line per broken bond with `after_peak`) and writes
+
+- PREFIX_increment.png: two slabs through the axis (the XZ and YZ planes through it, one
+  mean grain diameter either side), grains coloured by the magnitude of their displacement
+  increment from the peak to the end, and by its non-affine part (the increment less the
+  best linear field u = A x + b fitted to all grains), with the bonds broken after the peak;
+- PREFIX_surface.png: the lateral surface seen from outside, unrolled (angle about the
+  axis against height): the surface grains at the end coloured by the non-affine increment,
+  and the bonds broken after the peak within one mean diameter of the surface;
+- PREFIX_radius.png: the membrane's radius profile along the axis (the surface grains'
+  outer radius, centre distance + radius, averaged in slices) at the start of the shear
+  stage (after the consolidation), the peak and the end, and the change since the start,
+  also followed on the same grains (the start's surface grains' radial displacement):
+  barrelling shows as a middle that grows more than the ends.
+
+and prints the numbers the pictures are read with: the increment statistics (mean, affine
+and non-affine parts, the share of the non-affine increment carried by the top 10 % of the
+grains), the best single plane splitting the grains into two blocks that slide on each other
+(share of the non-affine increment's variance that a step across it explains), the
+after-peak breaks' spread, and the radius profile. Needs matplotlib and numpy (Debian:
+python3-matplotlib, python3-numpy).
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rockdem_plotting import pyplot  # noqa: E402
+
+plt = pyplot()
+import numpy as np  # noqa: E402
+from matplotlib.collections import PatchCollection  # noqa: E402
+from matplotlib.patches import Circle  # noqa: E402
+
+
+def read_dump(path):
+    grains, bonds = [], []
+    with open(path) as f:
+        reader = csv.DictReader(f)
+        if "px" not in reader.fieldnames:
+            sys.exit(path + " has no peak frame (px, py, pz): rerun rockdem_bench_rock --dump with this version")
+        for row in reader:
+            if row["kind"] == "particle":
+                shear = [float(row[k]) for k in ("sx", "sy", "sz")] if "sx" in row else [0.0, 0.0, 0.0]
+                grains.append([float(row[k]) for k in ("x", "y", "z", "radius", "dx", "dy", "dz", "px", "py", "pz",
+                                                        "fx", "fy", "fz")] + [int(row["surface"])] + shear)
+            else:
+                bonds.append([float(row["x"]), float(row["y"]), float(row["z"]), int(row["after_peak"]),
+                              1 if row["kind"] == "tension" else 0])
+    g = np.array(grains)
+    b = np.array(bonds) if bonds else np.zeros((0, 5))
+    return g, b
+
+
+def affine_fit(x, u):
+    """Least-squares u = A x + b over the grains; returns the fitted field."""
+    design = np.hstack([x, np.ones((len(x), 1))])
+    coef, *_ = np.linalg.lstsq(design, u, rcond=None)
+    return design @ coef
+
+
+def best_step_plane(x, residual, centre, diameter):
+    """The plane (normal n, offset s) that best splits the grains into two blocks whose mean
+    non-affine increments differ: the share of the residual's variance a step across it explains."""
+    total = float(np.sum((residual - residual.mean(axis=0)) ** 2))
+    best = (0.0, None, 0.0)
+    rel = x - centre
+    for dip in range(0, 91, 5):
+        for azimuth in range(0, 360 if dip else 1, 10):
+            d, a = math.radians(dip), math.radians(azimuth)
+            n = np.array([math.sin(d) * math.cos(a), math.sin(d) * math.sin(a), math.cos(d)])
+            s = rel @ n
+            for offset in np.arange(np.percentile(s, 15), np.percentile(s, 85), diameter / 2.0):
+                side = s > offset
+                k = int(side.sum())
+                if k < 20 or k > len(s) - 20:
+                    continue
+                m1 = residual[side].mean(axis=0)
+                m0 = residual[~side].mean(axis=0)
+                explained = k * (len(s) - k) / len(s) * float(np.sum((m1 - m0) ** 2))
+                share = explained / total if total > 0 else 0.0
+                if share > best[0]:
+                    best = (share, (dip, azimuth), offset, float(np.linalg.norm(m1 - m0)))
+    return best
+
+
+def radius_profile(xy_centre, pos, radius, on_surface, z0, z1, slices):
+    rel = pos[:, :2] - xy_centre
+    outer = np.sqrt(np.sum(rel ** 2, axis=1)) + radius
+    edges = np.linspace(z0, z1, slices + 1)
+    mids, means = [], []
+    for k in range(slices):
+        sel = on_surface & (pos[:, 2] >= edges[k]) & (pos[:, 2] < edges[k + 1])
+        if sel.sum():
+            mids.append(0.5 * (edges[k] + edges[k + 1]))
+            means.append(float(outer[sel].mean()))
+    return np.array(mids), np.array(means)
+
+
+def slab_panel(ax, g, values, bonds_after, centre, diameter, plane, label, cmap, symmetric):
+    other = 1 if plane == 0 else 0  # plane 0: XZ (slab across y), 1: YZ (slab across x)
+    sel = np.abs(g[:, other] - centre[other]) <= diameter
+    horizontal = 0 if plane == 0 else 1
+    coll = PatchCollection([Circle(((p[horizontal] - centre[horizontal]) * 1e3, p[2] * 1e3), p[3] * 1e3)
+                            for p in g[sel]], cmap=cmap, edgecolor="none")
+    v = values[sel] * 1e3
+    coll.set_array(v)
+    if symmetric:
+        top = float(np.percentile(np.abs(v), 98)) or 1.0
+        coll.set_clim(-top, top)
+    else:
+        coll.set_clim(0.0, float(np.percentile(v, 98)) or 1.0)
+    ax.add_collection(coll)
+    bsel = np.abs(bonds_after[:, other] - centre[other]) <= diameter
+    ax.plot((bonds_after[bsel, horizontal] - centre[horizontal]) * 1e3, bonds_after[bsel, 2] * 1e3, ".",
+            color="black", markersize=2.0, label="broken after the peak (%d)" % int(bsel.sum()))
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel(("x" if plane == 0 else "y") + " from the axis (mm)")
+    ax.set_ylabel("z (mm)")
+    ax.set_title(label, fontsize=8)
+    ax.legend(loc="lower right", fontsize=6)
+    plt.colorbar(coll, ax=ax, shrink=0.6, label="mm")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("dump")
+    parser.add_argument("-o", "--prefix", default="membrane")
+    parser.add_argument("--title", default="Membrane cylinder after the peak")
+    parser.add_argument("--from", dest="start", choices=("peak", "fall"), default="peak",
+                        help="the increment from the peak (default) or from the fall to 90 %% of it, to the end")
+    args = parser.parse_args()
+    g, b = read_dump(args.dump)
+    pos = g[:, 0:3]
+    radius = g[:, 3]
+    d, p, f = g[:, 4:7], g[:, 7:10], g[:, 10:13]
+    flags = g[:, 13].astype(int)
+    shear = g[:, 14:17]  # zeros in a dump without the frame: the start of the test then
+    diameter = 2.0 * float(radius.mean())
+    centre = pos.mean(axis=0)
+    inc = d - (p if args.start == "peak" else f)
+    fitted = affine_fit(pos, inc)
+    residual = inc - fitted
+    mag = np.linalg.norm(inc, axis=1)
+    res = np.linalg.norm(residual, axis=1)
+    order = np.sort(res)[::-1]
+    top10 = float(order[: max(1, len(order) // 10)].sum() / order.sum()) if order.sum() > 0 else 0.0
+    after = b[b[:, 3] == 1] if len(b) else b
+    print("grains %d, mean diameter %.4g m; bonds broken %d, after the peak %d (%.1f %% of the broken)" % (
+        len(g), diameter, len(b), len(after), 100.0 * len(after) / max(1, len(b))))
+    print("increment %s->end: mean |u| %.4g m (%.3f diameters), affine part mean %.4g m, non-affine mean %.4g m "
+          "(%.2f of the affine), RMS %.4g m; top 10 %% of grains carry %.1f %% of the non-affine increment" % (
+              args.start, mag.mean(), mag.mean() / diameter, np.linalg.norm(fitted, axis=1).mean(), res.mean(),
+              res.mean() / max(1e-300, np.linalg.norm(fitted, axis=1).mean()), math.sqrt(float((res ** 2).mean())),
+              100.0 * top10))
+    share, normal, offset, jump = best_step_plane(pos, residual, centre, diameter)
+    if normal:
+        print("best two-block plane: dip %d deg, azimuth %d deg, %.2f mm from the centre: a step there explains %.1f %% "
+              "of the non-affine increment's variance (jump %.4g m = %.3f diameters)" % (
+                  normal[0], normal[1], offset * 1e3, 100.0 * share, jump, jump / diameter))
+    if len(after):
+        rel = after[:, :3] - after[:, :3].mean(axis=0)
+        w = np.sort(np.linalg.eigvalsh(rel.T @ rel / len(rel)))
+        print("after-peak breaks: spread (std) along their principal axes %.3g, %.3g, %.3g m "
+              "(thinnest / thickest %.2f; a plane would be << 1); %.1f %% in tension" % (
+                  math.sqrt(w[0]), math.sqrt(w[1]), math.sqrt(w[2]), math.sqrt(w[0] / w[2]),
+                  100.0 * after[:, 4].mean()))
+
+    # Slabs through the axis.
+    fig, axes = plt.subplots(1, 4, figsize=(13, 5.2))
+    for k, (plane, values, label, cmap, sym) in enumerate((
+            (0, mag, "|increment| peak->end, XZ slab", "viridis", False),
+            (0, residual[:, 0], "non-affine increment, x component, XZ slab", "coolwarm", True),
+            (1, mag, "|increment| peak->end, YZ slab", "viridis", False),
+            (1, residual[:, 1], "non-affine increment, y component, YZ slab", "coolwarm", True))):
+        slab_panel(axes[k], g, values, after, centre, diameter, plane, label, cmap, sym)
+    fig.suptitle(args.title + " (increment from the %s to the end)" % args.start, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(args.prefix + "_increment.png", dpi=100)
+    print("wrote", args.prefix + "_increment.png")
+
+    # The surface seen from outside, unrolled.
+    end_surface = (flags & 4) > 0
+    theta = np.degrees(np.arctan2(pos[:, 1] - centre[1], pos[:, 0] - centre[0]))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 6))
+    sc = axes[0].scatter(theta[end_surface], pos[end_surface, 2] * 1e3, c=res[end_surface] * 1e3, s=28,
+                         cmap="magma", vmax=float(np.percentile(res[end_surface] * 1e3, 98)))
+    plt.colorbar(sc, ax=axes[0], label="|non-affine increment| peak->end (mm)")
+    axes[0].set_title("surface grains at the end (%d), unrolled" % int(end_surface.sum()), fontsize=9)
+    rb = np.sqrt((after[:, 0] - centre[0]) ** 2 + (after[:, 1] - centre[1]) ** 2) if len(after) else np.zeros(0)
+    outer = float(np.percentile(np.sqrt((pos[:, 0] - centre[0]) ** 2 + (pos[:, 1] - centre[1]) ** 2), 95))
+    near = rb >= outer - diameter
+    tb = np.degrees(np.arctan2(after[near, 1] - centre[1], after[near, 0] - centre[0])) if len(after) else []
+    axes[1].plot(tb, after[near, 2] * 1e3 if len(after) else [], ".", color="black", markersize=2.5)
+    axes[1].set_title("bonds broken after the peak within a diameter of the surface (%d)" % int(near.sum()),
+                      fontsize=9)
+    for ax in axes:
+        ax.set_xlabel("angle about the axis (deg)")
+        ax.set_ylabel("z (mm)")
+        ax.set_xlim(-180, 180)
+    fig.suptitle(args.title + ": the lateral surface seen from outside", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(args.prefix + "_surface.png", dpi=100)
+    print("wrote", args.prefix + "_surface.png")
+
+    # Barrelling: the radius profile at the start, the peak and the end.
+    start = pos - d + shear
+    frames = (("start", start, 1), ("peak", pos - d + p, 2), ("end", pos, 4))
+    z0 = float(start[:, 2].min())
+    z1 = float(start[:, 2].max())
+    slices = max(4, int(round((z1 - z0) / (1.25 * diameter))))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(9, 6), sharey=True)
+    profiles = {}
+    for name, x, bit in frames:
+        on = (flags & bit) > 0
+        zc = x[:, 2]
+        mids, means = radius_profile(x[:, :2].mean(axis=0), x, radius, on, zc.min(), zc.max() + 1e-12, slices)
+        frac = (mids - zc.min()) / (zc.max() - zc.min())
+        profiles[name] = (frac, means)
+        ax.plot(means * 1e3, frac, "o-", markersize=3, label="%s: mean %.3f mm" % (name, means.mean() * 1e3))
+    for name in ("peak", "end"):
+        n = min(len(profiles["start"][1]), len(profiles[name][1]))
+        ax2.plot((profiles[name][1][:n] - profiles["start"][1][:n]) * 1e3, profiles["start"][0][:n], "o-",
+                 markersize=3, color="C1" if name == "peak" else "C2", label=name + " - start")
+    # The same grains followed (no re-selection of the surface): the start's surface grains'
+    # radial displacement to the end, averaged in the start's slices.
+    x0 = start
+    c0 = x0[:, :2].mean(axis=0)
+    c1 = pos[:, :2].mean(axis=0)
+    r0 = np.linalg.norm(x0[:, :2] - c0, axis=1)
+    r1 = np.linalg.norm(pos[:, :2] - c1, axis=1)
+    on0 = (flags & 1) > 0
+    edges = np.linspace(z0, z1 + 1e-12, slices + 1)
+    followed = []
+    for k in range(slices):
+        sel = on0 & (x0[:, 2] >= edges[k]) & (x0[:, 2] < edges[k + 1])
+        followed.append(float((r1[sel] - r0[sel]).mean()) if sel.sum() else float("nan"))
+    followed = np.array(followed)
+    ax2.plot(followed * 1e3, (0.5 * (edges[:-1] + edges[1:]) - z0) / (z1 - z0), "s--", markersize=3, color="C3",
+             label="start's surface grains,\nradial displacement to the end")
+    ax2.axvline(0.0, color="grey", lw=0.8)
+    ax.set_xlabel("radius: surface grains' mean outer radius (mm)")
+    ax2.set_xlabel("radius change since the start (mm)\n(mean grain diameter %.2f mm)" % (diameter * 1e3))
+    ax.set_ylabel("height / specimen length")
+    for a in (ax, ax2):
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=8)
+    fig.suptitle(args.title + ": the membrane's radius along the axis", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(args.prefix + "_radius.png", dpi=110)
+    print("wrote", args.prefix + "_radius.png")
+    for name in ("start", "peak", "end"):
+        frac, means = profiles[name]
+        print("radius profile %s (mm, bottom to top): %s" % (name, " ".join("%.3f" % (v * 1e3) for v in means)))
+    n = len(followed)
+    fmid = np.nanmean(followed[n // 3: n - n // 3])
+    fend = np.nanmean(np.concatenate([followed[: max(1, n // 6)], followed[n - max(1, n // 6):]]))
+    print("start's surface grains, radial displacement to the end per slice (mm, bottom to top): %s; middle third "
+          "%.3f mm, end sixths %.3f mm, barrel (middle - ends) %.3f mm = %.3f diameters" % (
+              " ".join("%.3f" % (v * 1e3) for v in followed), fmid * 1e3, fend * 1e3, (fmid - fend) * 1e3,
+              (fmid - fend) / diameter))
+    fs, ms = profiles["start"]
+    fe, me = profiles["end"]
+    n = min(len(ms), len(me))
+    growth = (me[:n] - ms[:n]) / diameter
+    middle = growth[n // 3: n - n // 3].mean()
+    ends = np.concatenate([growth[: max(1, n // 6)], growth[n - max(1, n // 6):]]).mean()
+    print("radius change start->end, in mean diameters per slice: %s; middle third %.3f, end sixths %.3f, "
+          "barrel (middle - ends) %.3f diameters = %.3f mm" % (
+              " ".join("%.2f" % v for v in growth), middle, ends, middle - ends, (middle - ends) * diameter * 1e3))
+
+
+if __name__ == "__main__":
+    main()
