@@ -22,7 +22,11 @@
 //     triaxial tests at absolute confining stresses on a box (rigid walls) and on a cylinder
 //     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
 //     peaks and Mohr-Coulomb fit ("envelope" lines, read by scripts/plot_envelopes.py);
-//     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
+//     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test, with
+//     each grain's displacement to the start of shear, the peak and the fall to 90 % of it and
+//     the bonds broken after the peak (scripts/plot_localisation.py), and a "membrane frames"
+//     line; --triaxial-stop F (default 0.8) runs a triaxial test after its peak until the
+//     stress has fallen to F x the peak (or Max Strain), to see the deformation later.
 //   rockdem_bench_rock --tests tsmap --safeties 0.05,0.3,1,2 --bond-ratios 0.1,1,10,100 [--rate-factor 16]
 //   rockdem_bench_rock --tests servomap --dampings 0,0.7,0.95 --servo-alphas 0.05,0.5,1 [--rate-factor 16]
 //     the stability map of Documentation/SpeedAccuracy.md: tsmap, unconfined tests at each
@@ -100,6 +104,7 @@ struct Options {
   double bondModulus = 0.0;     // Pa; 0: --modulus
   double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
   double maxSteps = 0.0;        // > 0: a test stops after this many steps
+  double triaxialStop = 0.8;    // a triaxial test stops when its stress falls to this fraction of the peak
   bool probeToMaxStrain = false; // --tests stability: run every test to Max Strain (no stop after the peak)
   std::vector<double> safeties{ 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5 }; // --tests stability
   std::vector<double> bondRatios{ 0.1, 1.0, 10.0, 100.0 };                // x --modulus
@@ -130,7 +135,7 @@ Options parse(int argc, char** argv)
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
-    { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps } };
+    { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps }, { "--triaxial-stop", &o.triaxialStop } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -176,6 +181,11 @@ Options parse(int argc, char** argv)
       std::fprintf(stderr, "\n");
       std::exit(2);
     }
+  }
+  if (!(o.triaxialStop > 0.0 && o.triaxialStop < 1.0)) {
+    std::fprintf(stderr, "--triaxial-stop = %g is out of range: valid range is (0, 1) (a fraction of the peak)\n",
+                 o.triaxialStop);
+    std::exit(2);
   }
   return o;
 }
@@ -702,8 +712,8 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       fallen = true;
       r.strainAt70 = e;
     }
-    if (mode == TestMode::Triaxial && r.peak > 0.0 && sigma < 0.8 * r.peak && e > r.peakStrain) {
-      fallen = true; // past the peak: the envelope needs only the peak
+    if (mode == TestMode::Triaxial && r.peak > 0.0 && sigma < o.triaxialStop * r.peak && e > r.peakStrain) {
+      fallen = true; // past the peak: the envelope needs only the peak (--triaxial-stop, default 80 %)
     }
   }
   r.peaked = fallen;
