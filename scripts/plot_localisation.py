@@ -215,13 +215,42 @@ def main():
     fig.savefig(args.prefix + "_surface.png", dpi=100)
     print("wrote", args.prefix + "_surface.png")
 
+    # Where the shortening after the peak happens: the mean axial increment of the grains in
+    # each slice of the height; a homogeneous specimen gives a straight line, a zone that takes
+    # the shortening a steep stretch.
+    zs = pos[:, 2]
+    edges_z = np.linspace(zs.min(), zs.max() + 1e-12, max(4, int(round((zs.max() - zs.min()) / (1.25 * diameter)))) + 1)
+    axial = []
+    for k in range(len(edges_z) - 1):
+        sel = (zs >= edges_z[k]) & (zs < edges_z[k + 1])
+        axial.append(float(inc[sel, 2].mean()) if sel.sum() else float("nan"))
+    axial = np.array(axial)
+    zmid = 0.5 * (edges_z[:-1] + edges_z[1:])
+    total = axial[-1] - axial[0]
+    thirds = np.array_split(np.arange(len(axial)), 3)
+    shares = []
+    for part in thirds:
+        lo, hi = max(0, part[0] - 1), part[-1]
+        # the shortening across this third: from the slice below it (or its first) to its last
+        shares.append((axial[hi] - axial[lo]) / total if total else float("nan"))
+    print("axial increment %s->end per slice (mm, bottom to top): %s; shortening %.4g mm, of it bottom / middle / "
+          "top third: %.0f %% / %.0f %% / %.0f %% (homogeneous: about a third each)" % (
+              args.start, " ".join("%.3f" % (v * 1e3) for v in axial), -total * 1e3, 100 * shares[0], 100 * shares[1],
+              100 * shares[2]))
+
     # Barrelling: the radius profile at the start, the peak and the end.
     start = pos - d + shear
     frames = (("start", start, 1), ("peak", pos - d + p, 2), ("end", pos, 4))
     z0 = float(start[:, 2].min())
     z1 = float(start[:, 2].max())
     slices = max(4, int(round((z1 - z0) / (1.25 * diameter))))
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(9, 6), sharey=True)
+    fig, (ax, ax2, ax3) = plt.subplots(1, 3, figsize=(13, 6), sharey=True)
+    zfrac = (zmid - zs.min()) / (zs.max() - zs.min())
+    ax3.plot(axial * 1e3, zfrac, "o-", markersize=3, color="C4", label="mean axial increment %s->end" % args.start)
+    ax3.plot([axial[0] * 1e3, axial[-1] * 1e3], [zfrac[0], zfrac[-1]], ":", color="grey", label="homogeneous")
+    ax3.set_xlabel("axial displacement increment (mm)")
+    ax3.grid(True, alpha=0.3)
+    ax3.legend(fontsize=8)
     profiles = {}
     for name, x, bit in frames:
         on = (flags & bit) > 0

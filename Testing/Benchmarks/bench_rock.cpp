@@ -859,7 +859,7 @@ void dumpSpecimen(const FailedSpecimen& s, const std::string& path)
       const Vec3& x = m.bonds.failurePosition[k];
       const bool tension = m.bonds.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
       const bool afterPeak = k >= s.brokenAtPeak.size() || !s.brokenAtPeak[k];
-      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,%d\n", tension ? "tension" : "shear", x.x(), x.y(),
+      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0,0,0,0,0,0,0,0,0,0,0,%d\n", tension ? "tension" : "shear", x.x(), x.y(),
                    x.z(), afterPeak ? 1 : 0);
     }
   }
