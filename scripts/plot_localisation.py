@@ -10,8 +10,9 @@ the shear stage s, to the peak p, to the fall to 90 % of the peak f, membrane su
 one line per broken bond with `after_peak`) and writes
 
 - PREFIX_increment.png: two slabs through the axis (the XZ and YZ planes through it, one
-  mean grain diameter either side), grains coloured by the magnitude of their displacement
-  increment from the peak to the end, and by its non-affine part (the increment less the
+  mean grain diameter either side), grains coloured by the axial component of their
+  displacement increment from the peak to the end, and by the lateral component of its
+  non-affine part (the increment less the
   best linear field u = A x + b fitted to all grains), with the bonds broken after the peak;
 - PREFIX_surface.png: the lateral surface seen from outside, unrolled (angle about the
   axis against height): the surface grains at the end coloured by the non-affine increment,
@@ -24,9 +25,8 @@ one line per broken bond with `after_peak`) and writes
 
 and prints the numbers the pictures are read with: the increment statistics (mean, affine
 and non-affine parts, the share of the non-affine increment carried by the top 10 % of the
-grains), the best single plane splitting the grains into two blocks that slide on each other
-(share of the non-affine increment's variance that a step across it explains), the
-after-peak breaks' spread, and the radius profile. Needs matplotlib and numpy (Debian:
+grains), where along the axis the shortening after the peak happens (the mean axial
+increment in slices of the height), the after-peak breaks' spread, and the radius profile. Needs matplotlib and numpy (Debian:
 python3-matplotlib, python3-numpy).
 """
 import argparse
@@ -68,31 +68,6 @@ def affine_fit(x, u):
     design = np.hstack([x, np.ones((len(x), 1))])
     coef, *_ = np.linalg.lstsq(design, u, rcond=None)
     return design @ coef
-
-
-def best_step_plane(x, residual, centre, diameter):
-    """The plane (normal n, offset s) that best splits the grains into two blocks whose mean
-    non-affine increments differ: the share of the residual's variance a step across it explains."""
-    total = float(np.sum((residual - residual.mean(axis=0)) ** 2))
-    best = (0.0, None, 0.0)
-    rel = x - centre
-    for dip in range(0, 91, 5):
-        for azimuth in range(0, 360 if dip else 1, 10):
-            d, a = math.radians(dip), math.radians(azimuth)
-            n = np.array([math.sin(d) * math.cos(a), math.sin(d) * math.sin(a), math.cos(d)])
-            s = rel @ n
-            for offset in np.arange(np.percentile(s, 15), np.percentile(s, 85), diameter / 2.0):
-                side = s > offset
-                k = int(side.sum())
-                if k < 20 or k > len(s) - 20:
-                    continue
-                m1 = residual[side].mean(axis=0)
-                m0 = residual[~side].mean(axis=0)
-                explained = k * (len(s) - k) / len(s) * float(np.sum((m1 - m0) ** 2))
-                share = explained / total if total > 0 else 0.0
-                if share > best[0]:
-                    best = (share, (dip, azimuth), offset, float(np.linalg.norm(m1 - m0)))
-    return best
 
 
 def radius_profile(xy_centre, pos, radius, on_surface, z0, z1, slices):
@@ -165,11 +140,6 @@ def main():
               args.start, mag.mean(), mag.mean() / diameter, np.linalg.norm(fitted, axis=1).mean(), res.mean(),
               res.mean() / max(1e-300, np.linalg.norm(fitted, axis=1).mean()), math.sqrt(float((res ** 2).mean())),
               100.0 * top10))
-    share, normal, offset, jump = best_step_plane(pos, residual, centre, diameter)
-    if normal:
-        print("best two-block plane: dip %d deg, azimuth %d deg, %.2f mm from the centre: a step there explains %.1f %% "
-              "of the non-affine increment's variance (jump %.4g m = %.3f diameters)" % (
-                  normal[0], normal[1], offset * 1e3, 100.0 * share, jump, jump / diameter))
     if len(after):
         rel = after[:, :3] - after[:, :3].mean(axis=0)
         w = np.sort(np.linalg.eigvalsh(rel.T @ rel / len(rel)))
@@ -181,9 +151,9 @@ def main():
     # Slabs through the axis.
     fig, axes = plt.subplots(1, 4, figsize=(13, 5.2))
     for k, (plane, values, label, cmap, sym) in enumerate((
-            (0, mag, "|increment| peak->end, XZ slab", "viridis", False),
+            (0, inc[:, 2], "axial increment (z), XZ slab", "PuOr", True),
             (0, residual[:, 0], "non-affine increment, x component, XZ slab", "coolwarm", True),
-            (1, mag, "|increment| peak->end, YZ slab", "viridis", False),
+            (1, inc[:, 2], "axial increment (z), YZ slab", "PuOr", True),
             (1, residual[:, 1], "non-affine increment, y component, YZ slab", "coolwarm", True))):
         slab_panel(axes[k], g, values, after, centre, diameter, plane, label, cmap, sym)
     fig.suptitle(args.title + " (increment from the %s to the end)" % args.start, fontsize=10)
@@ -195,15 +165,36 @@ def main():
     end_surface = (flags & 4) > 0
     theta = np.degrees(np.arctan2(pos[:, 1] - centre[1], pos[:, 0] - centre[0]))
     fig, axes = plt.subplots(1, 2, figsize=(11, 6))
-    sc = axes[0].scatter(theta[end_surface], pos[end_surface, 2] * 1e3, c=res[end_surface] * 1e3, s=28,
-                         cmap="magma", vmax=float(np.percentile(res[end_surface] * 1e3, 98)))
-    plt.colorbar(sc, ax=axes[0], label="|non-affine increment| peak->end (mm)")
+    top = float(np.percentile(np.abs(inc[end_surface, 2]) * 1e3, 98)) or 1.0
+    sc = axes[0].scatter(theta[end_surface], pos[end_surface, 2] * 1e3, c=inc[end_surface, 2] * 1e3, s=28,
+                         cmap="PuOr", vmin=-top, vmax=top)
+    plt.colorbar(sc, ax=axes[0], label="axial increment %s->end (mm)" % args.start)
     axes[0].set_title("surface grains at the end (%d), unrolled" % int(end_surface.sum()), fontsize=9)
     rb = np.sqrt((after[:, 0] - centre[0]) ** 2 + (after[:, 1] - centre[1]) ** 2) if len(after) else np.zeros(0)
     outer = float(np.percentile(np.sqrt((pos[:, 0] - centre[0]) ** 2 + (pos[:, 1] - centre[1]) ** 2), 95))
     near = rb >= outer - diameter
     tb = np.degrees(np.arctan2(after[near, 1] - centre[1], after[near, 0] - centre[0])) if len(after) else []
     axes[1].plot(tb, after[near, 2] * 1e3 if len(after) else [], ".", color="black", markersize=2.5)
+    if int(near.sum()) >= 10:
+        # The trace of an inclined plane on the cylinder: z = z0 + a cos(theta) + b sin(theta),
+        # amplitude sqrt(a^2 + b^2) = R tan(dip). A diffuse cloud gives a small share explained.
+        t = np.radians(np.asarray(tb))
+        zb = after[near, 2]
+        design = np.column_stack([np.ones_like(t), np.cos(t), np.sin(t)])
+        coef, *_ = np.linalg.lstsq(design, zb, rcond=None)
+        explained = 1.0 - float(np.sum((zb - design @ coef) ** 2)) / float(np.sum((zb - zb.mean()) ** 2))
+        amplitude = math.hypot(coef[1], coef[2])
+        dip = math.degrees(math.atan2(amplitude, outer))
+        lowest = math.degrees(math.atan2(-coef[2], -coef[1]))
+        print("after-peak breaks near the surface (%d): the best plane's trace z = %.1f mm + %.1f mm cos(theta - "
+              "theta_high), highest at theta %.0f deg, explains %.1f %% of their spread in height (a plane dipping "
+              "%.0f deg; their height: mean %.1f mm, std %.1f mm)" % (
+                  int(near.sum()), coef[0] * 1e3, amplitude * 1e3, (lowest + 360.0) % 360.0 - 180.0,
+                  100.0 * explained, dip, zb.mean() * 1e3, zb.std() * 1e3))
+        tt = np.linspace(-math.pi, math.pi, 181)
+        axes[1].plot(np.degrees(tt), (coef[0] + coef[1] * np.cos(tt) + coef[2] * np.sin(tt)) * 1e3, "-", color="C3",
+                     label="best plane's trace: dip %.0f deg, %.0f %% of the spread" % (dip, 100.0 * explained))
+        axes[1].legend(fontsize=7, loc="lower left")
     axes[1].set_title("bonds broken after the peak within a diameter of the surface (%d)" % int(near.sum()),
                       fontsize=9)
     for ax in axes:
