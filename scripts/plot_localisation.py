@@ -170,6 +170,45 @@ def main():
                          cmap="PuOr", vmin=-top, vmax=top)
     plt.colorbar(sc, ax=axes[0], label="axial increment %s->end (mm)" % args.start)
     axes[0].set_title("surface grains at the end (%d), unrolled" % int(end_surface.sum()), fontsize=9)
+    # The boundary of the part that moves down with the top platen after the peak, on the
+    # surface: grains whose axial increment is below the midpoint of the surface's 10th and
+    # 90th percentiles move with the platen; in each of 12 sectors the height that best splits
+    # them from the rest (fewest grains on the wrong side), and the plane whose trace on the
+    # cylinder fits those heights best (z = z0 + a cos theta + b sin theta).
+    uz = inc[end_surface, 2]
+    threshold = 0.5 * (np.percentile(uz, 10) + np.percentile(uz, 90))
+    moving = uz < threshold
+    ts, zsurf = theta[end_surface], pos[end_surface, 2]
+    cuts, angles, wrong = [], [], 0
+    for k in range(12):
+        sel = (ts >= -180 + 30 * k) & (ts < -150 + 30 * k)
+        if sel.sum() < 4:
+            continue
+        zk, mk = zsurf[sel], moving[sel]
+        candidates = np.concatenate([[zk.min() - 1e-9], np.sort(zk)])
+        errors = [int(np.sum((zk > c) & ~mk) + np.sum((zk <= c) & mk)) for c in candidates]
+        best = int(np.argmin(errors))
+        cuts.append(candidates[best])
+        angles.append(math.radians(-165 + 30 * k))
+        wrong += errors[best]
+    cuts, angles = np.array(cuts), np.array(angles)
+    design = np.column_stack([np.ones_like(angles), np.cos(angles), np.sin(angles)])
+    coef, *_ = np.linalg.lstsq(design, cuts, rcond=None)
+    explained = 1.0 - float(np.sum((cuts - design @ coef) ** 2)) / max(1e-300, float(np.sum((cuts - cuts.mean()) ** 2)))
+    amplitude = math.hypot(coef[1], coef[2])
+    outer_r = float(np.percentile(np.sqrt((pos[:, 0] - centre[0]) ** 2 + (pos[:, 1] - centre[1]) ** 2) + radius, 95))
+    print("surface: %d of %d surface grains move down with the top platen (axial increment below %.4g mm); the boundary's "
+          "height in 12 sectors from theta -180 deg (mm): %s; %d grains (%.1f %%) on the wrong side of it; the best "
+          "plane's trace z = %.1f mm + %.1f mm cos(theta - %.0f deg) (%.0f %% of the boundary's spread): a plane "
+          "dipping %.0f deg (0: the boundary is level, an end zone)" % (
+              int(moving.sum()), len(moving), threshold * 1e3, " ".join("%.1f" % (c * 1e3) for c in cuts), wrong,
+              100.0 * wrong / len(moving), coef[0] * 1e3, amplitude * 1e3, math.degrees(math.atan2(coef[2], coef[1])),
+              100.0 * explained, math.degrees(math.atan2(amplitude, outer_r))))
+    axes[0].plot(np.degrees(angles), cuts * 1e3, "k+", markersize=10, label="boundary in each sector")
+    tt = np.linspace(-math.pi, math.pi, 181)
+    axes[0].plot(np.degrees(tt), (coef[0] + coef[1] * np.cos(tt) + coef[2] * np.sin(tt)) * 1e3, "-", color="C3",
+                 label="best plane's trace: dip %.0f deg" % math.degrees(math.atan2(amplitude, outer_r)))
+    axes[0].legend(fontsize=7, loc="lower left")
     rb = np.sqrt((after[:, 0] - centre[0]) ** 2 + (after[:, 1] - centre[1]) ** 2) if len(after) else np.zeros(0)
     outer = float(np.percentile(np.sqrt((pos[:, 0] - centre[0]) ** 2 + (pos[:, 1] - centre[1]) ** 2), 95))
     near = rb >= outer - diameter
