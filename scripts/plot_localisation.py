@@ -26,7 +26,9 @@ one line per broken bond with `after_peak`) and writes
 and prints the numbers the pictures are read with: the increment statistics (mean, affine
 and non-affine parts, the share of the non-affine increment carried by the top 10 % of the
 grains), where along the axis the shortening after the peak happens (the mean axial
-increment in slices of the height), the after-peak breaks' spread, and the radius profile. Needs matplotlib and numpy (Debian:
+increment in slices of the height), the after-peak breaks' spread, the boundary on the
+surface of the part that moves with the platen and the plane whose trace fits it, and the
+radius profile. Needs matplotlib and numpy (Debian:
 python3-matplotlib, python3-numpy).
 """
 import argparse
@@ -192,12 +194,15 @@ def main():
         angles.append(math.radians(-165 + 30 * k))
         wrong += errors[best]
     cuts, angles = np.array(cuts), np.array(angles)
+    if len(cuts) < 3:
+        sys.exit("too few surface grains (%d sectors with 4 or more) to find the boundary" % len(cuts))
     design = np.column_stack([np.ones_like(angles), np.cos(angles), np.sin(angles)])
     coef, *_ = np.linalg.lstsq(design, cuts, rcond=None)
     explained = 1.0 - float(np.sum((cuts - design @ coef) ** 2)) / max(1e-300, float(np.sum((cuts - cuts.mean()) ** 2)))
     amplitude = math.hypot(coef[1], coef[2])
     outer_r = float(np.percentile(np.sqrt((pos[:, 0] - centre[0]) ** 2 + (pos[:, 1] - centre[1]) ** 2) + radius, 95))
-    print("surface: %d of %d surface grains move down with the top platen (axial increment below %.4g mm); the boundary's "
+    print("surface: %d of %d surface grains move down with the top platen (axial increment below %.4g mm); "
+          "the boundary's "
           "height in 12 sectors from theta -180 deg (mm): %s; %d grains (%.1f %%) on the wrong side of it; the best "
           "plane's trace z = %.1f mm + %.1f mm cos(theta - %.0f deg) (%.0f %% of the boundary's spread): a plane "
           "dipping %.0f deg (0: the boundary is level, an end zone)" % (
