@@ -165,6 +165,9 @@ def main():
 
     # The surface seen from outside, unrolled.
     end_surface = (flags & 4) > 0
+    if not end_surface.any():
+        sys.exit("no membrane surface grains in " + args.dump + " (the surface pictures need a Confinement = "
+                 "Membrane test; the slabs above are written)")
     theta = np.degrees(np.arctan2(pos[:, 1] - centre[1], pos[:, 0] - centre[0]))
     fig, axes = plt.subplots(1, 2, figsize=(11, 6))
     top = float(np.percentile(np.abs(inc[end_surface, 2]) * 1e3, 98)) or 1.0
