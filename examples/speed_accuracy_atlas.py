@@ -395,8 +395,9 @@ def stability_section(bench, cfg, work, out):
                          cell(r), r["peak"], 100 * r["servo_max"], 100 * r["servo_mean"], r["steps"])
                          for r in sv if r["damping"] == d and r["alpha"] == a), "") for a in alphas]
                       for d in sorted(set(r["damping"] for r in sv))])
-    messages = sorted(set(re.sub(r"particle \d+", "particle N", re.sub(r"[-+0-9.e]+ s", "... s", r["message"]))
-                          for r in detected))
+    # Numbers elided (times, energies, Timestep Safety values), so that one kind of message is listed once.
+    messages = sorted(set(re.sub(r"(?<![\w.])[-+]?\d[\d.]*(e[-+]?\d+)?", "...",
+                                 re.sub(r"particle \d+", "particle N", r["message"])) for r in detected))
     text = ("Commands: `rockdem_bench_rock %s` and `rockdem_bench_rock %s` (%s; %s; %s).\n\n"
             "**Counts: %d runs, %d unstable, %d of them detected (stopped by the engine with its message, the model "
             "at its last good state), %d runs whose output held a non-finite value.**\n\n"

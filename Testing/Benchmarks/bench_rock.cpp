@@ -41,6 +41,9 @@
 //     test history), which must be 0.
 //   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --servo-alpha A; --max-steps N
 //     stops a test after N steps; --to-max-strain: the stability runs go on to Max Strain.
+//   --min-peak-strain S: the stop rule (the stress fallen to 70 %, triaxial 80 %, of its peak)
+//     counts a peak only at an axial strain of S or more (default 1 % of --max-strain), so
+//     that the stress oscillation at the start of an undamped test does not end it.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
 //     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
 // Every option is listed by --help. SI units.
@@ -100,6 +103,7 @@ struct Options {
   double safety = 0.3;
   double damping = 0.7;
   double maxStrain = 0.03;
+  double minPeakStrain = -1.0;  // the stop rule's smallest peak strain; < 0: 1 % of maxStrain
   double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
   double bondModulus = 0.0;     // Pa; 0: --modulus
   double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
@@ -135,7 +139,8 @@ Options parse(int argc, char** argv)
     { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
-    { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps }, { "--triaxial-stop", &o.triaxialStop } };
+    { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
+    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -602,8 +607,16 @@ void markSurface(const Model& m, std::vector<std::uint8_t>& surface, std::uint8_
   }
 }
 
+/// The stop rule's smallest peak strain: a peak before it (the stress oscillation at the
+/// start of an undamped test) does not end a test when the stress falls after it.
+double minPeakStrain(const Options& o)
+{
+  return o.minPeakStrain >= 0.0 ? o.minPeakStrain : 0.01 * o.maxStrain;
+}
+
 /// Runs a test until the stress has fallen to 70 % of the peak after it (compression,
-/// tension), the shear stage's max strain, or the test is done.
+/// tension; a peak at --min-peak-strain or later), the shear stage's max strain, or the
+/// test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
                    Confinement confinement = Confinement::RigidWalls, FailedSpecimen* failed = nullptr)
 {
@@ -708,11 +721,12 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       failed->endStrain = e;
       failed->endStress = sigma;
     }
-    if (mode != TestMode::Triaxial && r.peak > 0.0 && sigma < 0.7 * r.peak && e > r.peakStrain) {
+    const bool peakCounts = r.peak > 0.0 && r.peakStrain >= minPeakStrain(o);
+    if (mode != TestMode::Triaxial && peakCounts && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
       r.strainAt70 = e;
     }
-    if (mode == TestMode::Triaxial && r.peak > 0.0 && sigma < o.triaxialStop * r.peak && e > r.peakStrain) {
+    if (mode == TestMode::Triaxial && peakCounts && sigma < o.triaxialStop * r.peak && e > r.peakStrain) {
       fallen = true; // past the peak: the envelope needs only the peak (--triaxial-stop, default 80 %)
     }
   }
@@ -1018,7 +1032,8 @@ ProbeResult probeRun(Model m, TestMode mode, double confining, const Options& o,
         std::fprintf(stderr, "  step %lld strain %.5g stress %.4g lateral %.4g speed %.3g ke %.4g broken %zu\n", static_cast<long long>(r.steps),
                      me.strain[2], sigma, me.lateralStress, r.maxSpeed, run.diagnostics().kineticEnergy, countBonds(m.bonds).broken);
       }
-      if (!o.probeToMaxStrain && r.peak > 0.0 && sigma < fall * r.peak && me.strain[2] > r.peakStrain) {
+      if (!o.probeToMaxStrain && r.peak > 0.0 && r.peakStrain >= minPeakStrain(o) && sigma < fall * r.peak &&
+          me.strain[2] > r.peakStrain) {
         r.peaked = true;
         break;
       }

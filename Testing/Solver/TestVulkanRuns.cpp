@@ -110,6 +110,36 @@ TEST(VulkanRuns, CementedSpecimenUnderUnconfinedCompressionGivesTheCpuBits)
   EXPECT_EQ(countBonds(cpu.bonds).broken, countBonds(gpu.bonds).broken);
 }
 
+// The energy check (Simulation::checkStability) gives the same decision on both paths: a
+// cemented specimen at 3 x the critical timestep (test-only switch), which breaks its bonds
+// while every value stays finite, is stopped at the same check with the same message, and
+// both keep the same last good state.
+TEST(VulkanRuns, UnstableCementedCompressionIsStoppedAsOnTheCpu)
+{
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  Model m = cementedSpecimen(150, 0.012, 2);
+  ASSERT_GT(m.bonds.size(), 50u);
+  startLoadTest(m, compression(1.0, 10));
+  m.solver.allowUnsafeTimestep = true;
+  m.solver.requestedTimestep = 3.0 * Simulation(m).criticalTimestep();
+  std::string messages[2];
+  Model ends[2] = { m, m };
+  for (int k = 0; k < 2; ++k) {
+    Simulation sim(ends[k], k == 0 ? SolverDevice::CPU : SolverDevice::GPU);
+    try {
+      sim.advance(2000);
+    } catch (const InstabilityError& e) {
+      messages[k] = e.what();
+    }
+  }
+  EXPECT_NE(messages[0].find("x the energy available"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[0].find("Timestep Safety 3"), std::string::npos) << messages[0];
+  EXPECT_EQ(messages[1], messages[0]);
+  EXPECT_EQ(ends[1].clock.step, m.clock.step);
+  EXPECT_EQ(ends[1].particles.position, ends[0].particles.position);
+  EXPECT_EQ(ends[1].bonds.failure, ends[0].bonds.failure);
+}
+
 TEST(VulkanRuns, CarvedSpecimensUnderBrazilianAndGrippedTensionGiveTheCpuBits)
 {
   // Issue 13's modes on the device: the Brazilian platens are the Compression platens, the

@@ -11,6 +11,7 @@
 // This is also where a distributed (MPI) backend will plug in. SI units.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -25,6 +26,11 @@ struct StabilityReport {
   std::size_t escaped = 0;    ///< particles outside the walls on an axis with walls
   long firstEscaped = -1;     ///< slot of the first of them, or -1
   double kineticEnergy = 0.0; ///< J, translational + rotational
+  /// The walls (X-, X+, Y-, Y+, Z-, Z+) after the last step, for the work they do on the
+  /// specimen (Simulation::checkStability): position along the axis (m) and the axis
+  /// component of the reaction, the force the particles exert on the wall (N).
+  std::array<double, 6> wallPosition{};
+  std::array<double, 6> wallForce{};
 };
 
 /// Device memory a backend holds (none for the CPU backend, whose arrays are host memory).

@@ -19,12 +19,18 @@
 #include "dem/LoadTest.h"
 #include "dem/Model.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dem {
+
+/// The energy check's factor (Simulation::checkStability): a run stops as unstable when its
+/// kinetic energy exceeds this many times the energy available to it.
+constexpr double EnergyCheckFactor = 2.0;
 
 /// Raised when a run goes unstable (non-finite values, energy gained without a source,
 /// particles escaping the box). The model is left at its last good state.
@@ -103,8 +109,13 @@ public:
   const ContactModel& contactModel() const { return contactModel_; }
 
   Diagnostics diagnostics() const;
+  /// J, the work the walls, platens (a tension platen's attached grains) and the membrane
+  /// have done on the specimen since this Simulation started, as of the last stability
+  /// check (every 64 steps and at the end of each advance; the trapezoid rule between them).
+  double boundaryWork() const { return boundaryWork_; }
   /// Total mechanical energy, J: kinetic + gravitational potential (relative to the
-  /// origin) + elastic energy stored in the normal and tangential contact springs.
+  /// origin) + elastic energy stored in the normal and tangential contact springs and in
+  /// the intact bonds (normal, shear, twisting and bending springs, times 1 - damage).
   double totalEnergy() const;
 
   /// Writes the live contact history into model.contacts (done after every advance()).
@@ -122,8 +133,10 @@ private:
   std::int64_t stepsToNextSample() const;
   void sampleLoadTest(std::int64_t steps);
   double contactForceMagnitude(const ContactState& state, std::size_t particle) const;
-  void checkStability(const char* when) const;
+  void checkStability(const char* when);
   double availableEnergy() const;
+  void accumulateWork(const StabilityReport& report);
+  std::string timestepAdvice() const;
 
   Model& model_;
   std::unique_ptr<Backend> backend_;
@@ -134,6 +147,17 @@ private:
   std::string gpuFallbackReason_;
   double initialAvailableEnergy_ = 0.0; ///< J, for the energy-gain check
   double gravityWorkAtStart_ = 0.0;     ///< J, gravity's work along periodic axes at the start
+  double gravityPotentialAtStart_ = 0.0; ///< J, sum of -m g.x over the particles (non-periodic axes)
+  // The work the walls, platens (a tension platen's attached grains) and the membrane have
+  // done on the specimen since this Simulation started: the trapezoid rule between
+  // stability checks (every 64 steps), kept in memory (a resumed run starts again from its
+  // own energy). Simulation::checkStability; Documentation/SpeedAccuracy.md "Stability map".
+  double boundaryWork_ = 0.0;                 ///< J
+  std::int64_t startStep_ = 0;                ///< the clock's step when this Simulation started
+  std::array<double, 6> lastWallPosition_{};  ///< m, at the last check
+  std::array<double, 6> lastWallForce_{};     ///< N, axis component of the particles' push, at the last check
+  std::vector<Vec3> lastMembranePosition_;    ///< m, at the last check (membrane and tension runs)
+  std::vector<Vec3> lastMembraneForce_;       ///< N, the push of the membrane or tension platen on each particle at the last check
   bool broken_ = false;                 ///< an instability stopped the run
 };
 

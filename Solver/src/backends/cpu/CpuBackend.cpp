@@ -134,6 +134,10 @@ StabilityReport CpuBackend::stability()
 {
   const Particles& p = model_.particles;
   StabilityReport r;
+  for (std::size_t w = 0; w < model_.walls.size() && w < 6; ++w) {
+    r.wallPosition[w] = model_.walls[w].position;
+    r.wallForce[w] = model_.walls[w].force[model_.walls[w].axis];
+  }
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.position[i].allFinite() || !p.velocity[i].allFinite() ||
         !p.angularVelocity[i].allFinite()) {

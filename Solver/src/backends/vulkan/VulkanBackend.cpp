@@ -106,6 +106,7 @@ constexpr std::uint32_t kGroupSize = GROUP_SIZE;
 constexpr std::uint32_t kDispatchX = DISPATCH_X;
 constexpr std::uint64_t kStagingBytes = 32ull << 20;
 constexpr std::int64_t kMaxStepsPerSubmission = 64;
+constexpr std::uint64_t kWallsStagingOffset = 1024; // bytes: after the counters (0), clock (256) and kinetic energy (512)
 
 struct PushParams {
   std::uint64_t params;
@@ -432,6 +433,8 @@ void VulkanBackend::allocate()
       indirect_ = &a.buffer;
     } else if (name == "clock") {
       clock_ = &a.buffer;
+    } else if (name == "walls") {
+      walls_ = &a.buffer;
     } else if (name == "partialSums") {
       partialSums_ = &a.buffer;
     }
@@ -1026,12 +1029,22 @@ StabilityReport VulkanBackend::stability()
     recordControlReadback(cb);
     VkBufferCopy c{ 8 * static_cast<std::uint64_t>(resultIndex), 512, 8 };
     api.vkCmdCopyBuffer(cb, partialSums_->buffer, staging_.buffer, 1, &c);
+    // The walls (positions and reactions) for the wall work of the energy check.
+    VkBufferCopy w{ 0, kWallsStagingOffset, 8 * 6 * WALL_STRIDE };
+    api.vkCmdCopyBuffer(cb, walls_->buffer, staging_.buffer, 1, &w);
   });
   std::uint32_t ctl[CTL_COUNT];
   readControlReadback(ctl);
   double kinetic = 0.0;
   std::memcpy(&kinetic, static_cast<const char*>(staging_.mapped) + 512, 8);
   StabilityReport r;
+  std::vector<double> walls(6 * WALL_STRIDE);
+  std::memcpy(walls.data(), static_cast<const char*>(staging_.mapped) + kWallsStagingOffset, 8 * walls.size());
+  for (int w = 0; w < 6; ++w) {
+    const double* x = &walls[WALL_STRIDE * w];
+    r.wallPosition[w] = x[WALL_POSITION];
+    r.wallForce[w] = x[WALL_FORCE + model_.walls[w].axis];
+  }
   if (ctl[CTL_NONFINITE] != ~0u) {
     r.firstNonFinite = static_cast<long>(ctl[CTL_NONFINITE]);
     return r;

@@ -98,6 +98,7 @@ private:
   const vk::Buffer* control_ = nullptr;   // arrays_ entries used by the host
   const vk::Buffer* indirect_ = nullptr;
   const vk::Buffer* clock_ = nullptr;
+  const vk::Buffer* walls_ = nullptr;
   const vk::Buffer* partialSums_ = nullptr;
   std::uint32_t n_ = 0;
   std::uint32_t bonds_ = 0;

@@ -1,0 +1,140 @@
+// The energy check of Simulation::checkStability during a load test (issue 17; derivation in
+// Documentation/SpeedAccuracy.md, "The energy check"): the kinetic energy may not exceed
+// EnergyCheckFactor x (the energy at the start + the work of the walls, platens and membrane
+// + the work of gravity). Reference for the wall work: energy conservation (the work a platen
+// does on an undamped elastic sphere equals the energy the sphere then holds).
+#include "DynamicsFixtures.h"
+#include "Specimens.h"
+
+#include "dem/Bonds.h"
+#include "dem/Cement.h"
+#include "dem/Errors.h"
+#include "dem/LoadTest.h"
+#include "dem/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace dem;
+using namespace dem::testing;
+
+namespace {
+
+/// The cemented specimen of the press tests (150 grains, bond modulus 2e7 Pa on grains of
+/// 1e8 Pa), unconfined compression at 1 1/s, a history row every 10 steps.
+Model cementedCompression(double strainRate = 1.0, double consolidation = 0.0)
+{
+  Model m = specimen(150, 0.012, 0.0008, 0.0012, 2);
+  if (consolidation > 0.0) {
+    consolidate(m, consolidation); // a closer pack: more bonds, a specimen that fails
+  }
+  EXPECT_GT(cement(m, testCement()).bonds, 50u);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.strainRate = strainRate;
+  s.maxStrain = 0.03;
+  s.sampleInterval = 10;
+  startLoadTest(m, s);
+  return m;
+}
+
+} // namespace
+
+// Arithmetic of the wall work: a sphere just touching both Z walls, squeezed by the platen
+// at a constant speed, without damping (restitution 1, Settling Damping 0): the work the
+// platen did (the trapezoid rule between checks) equals the sphere's energy gain, kinetic
+// plus the elastic energy of its two wall contacts (totalEnergy), within 1 %.
+TEST(EnergyCheck, PlatenWorkOnOneSphereEqualsItsEnergyGain)
+{
+  const double r = 0.01;
+  Model m = emptyModel(1e8, 0.25, 2600.0, 1.0, 0.1);
+  m.domain.size.z() = 2.0 * r;
+  m.domain.origin.z() = -r;
+  addSphere(m, Vec3(0, 0, 0), r);
+  LoadTestSettings s;
+  s.mode = TestMode::Compression;
+  s.strainRate = 0.2; // 4 mm/s on a 20 mm specimen
+  s.maxStrain = 0.5;
+  s.sampleInterval = 1000;
+  startLoadTest(m, s);
+  Simulation sim(m);
+  const double e0 = sim.totalEnergy();
+  sim.advance(20000);
+  const double gain = sim.totalEnergy() - e0;
+  ASSERT_GT(gain, 0.0);
+  // The platen travelled 4e-3 m/s x 20000 dt: a real squeeze, not a touch.
+  EXPECT_GT(r - (m.walls[5].position - m.particles.position[0].z()), 1e-5);
+  EXPECT_NEAR(sim.boundaryWork(), gain, 0.01 * gain);
+}
+
+// The elastic energy of an intact bond counts in totalEnergy: a stretched bond holds
+// Fn^2 / (2 kn A) (PHYSICS.md section 3), so the energy changes by exactly that when a
+// normal force is put on it.
+TEST(EnergyCheck, TotalEnergyCountsTheBondSprings)
+{
+  Model m = specimen(150, 0.012, 0.0008, 0.0012, 2);
+  ASSERT_GT(cement(m, testCement()).bonds, 50u);
+  Simulation sim(m);
+  const double before = sim.totalEnergy();
+  const BondSection sec = bondSection(m.bonds.radius[0], false, 0.0);
+  const double fn = 0.1;
+  m.bonds.normalForce[0] = fn;
+  Simulation again(m);
+  const double expected = fn * fn / (2.0 * m.bonds.normalStiffness[0] * sec.area);
+  EXPECT_NEAR(again.totalEnergy() - before, expected, 1e-9 * expected);
+}
+
+// The map's fault: a cemented specimen at 3 x the critical timestep (test-only switch) under
+// Settling Damping 0.7 breaks its bonds and calms down again while every value stays finite;
+// the energy check stops it, names Timestep Safety, and keeps the last good state.
+TEST(EnergyCheck, UnstableCementedCompressionIsStoppedFinite)
+{
+  Model m = cementedCompression();
+  m.solver.allowUnsafeTimestep = true;
+  m.solver.requestedTimestep = 3.0 * Simulation(m).criticalTimestep();
+  Simulation sim(m);
+  const Model before = m;
+  std::string message;
+  try {
+    sim.advance(2000);
+  } catch (const InstabilityError& e) {
+    message = e.what();
+  }
+  ASSERT_FALSE(message.empty()) << "not detected";
+  EXPECT_NE(message.find("x the energy available"), std::string::npos) << message;
+  EXPECT_NE(message.find("Timestep Safety 3"), std::string::npos) << message;
+  EXPECT_NE(message.find("lower Timestep Safety"), std::string::npos) << message;
+  EXPECT_EQ(m.clock.step, before.clock.step);
+  EXPECT_EQ(m.particles.position, before.particles.position);
+  EXPECT_EQ(countBonds(m.bonds).broken, 0u);
+}
+
+// Stable tests with large wall work never fire: the cemented specimen compressed to Max
+// Strain 3 % at 5 1/s (the platens' work many times the starting energy, bonds breaking), and a triaxial test through its
+// consolidation (the servo) and shear.
+TEST(EnergyCheck, StableTestsWithLargeWallWorkNeverFire)
+{
+  Model m = cementedCompression(5.0, 2e4);
+  Simulation sim(m);
+  const double e0 = sim.totalEnergy();
+  for (int k = 0; k < 8 && m.test.stage != TestStage::Done; ++k) {
+    ASSERT_NO_THROW(sim.advance(2000));
+  }
+  EXPECT_EQ(m.test.stage, TestStage::Done); // Max Strain 3 %
+  EXPECT_GT(countBonds(m.bonds).broken, 0u) << "bonds break";
+  EXPECT_GT(sim.boundaryWork(), 5.0 * e0) << "the platens' work dominates the starting energy";
+
+  Model t = specimen(150, 0.012, 0.0008, 0.0012, 2);
+  ASSERT_GT(cement(t, testCement()).bonds, 50u);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.confiningStress = 2e5;
+  s.strainRate = 1.0;
+  s.sampleInterval = 10;
+  startLoadTest(t, s);
+  Simulation tri(t);
+  ASSERT_NO_THROW(tri.advance(6000));
+  EXPECT_EQ(t.test.stage, TestStage::Shear);
+  EXPECT_GT(tri.boundaryWork(), 0.0);
+}
