@@ -15,6 +15,7 @@ matplotlib (Debian: python3-matplotlib).
 """
 import argparse
 import csv
+import math
 import os
 import re
 import sys
@@ -52,7 +53,7 @@ def envelope_chart(points, fits, out):
         s3 = [p[0] / 1e6 for p in points[kind]]
         s1 = [p[1] / 1e6 for p in points[kind]]
         line = ax.plot(s3, s1, marker, label=LABELS[kind])[0]
-        if kind in fits:
+        if kind in fits and all(math.isfinite(v) for v in fits[kind]):  # a single test has no fit
             a, b, phi, c = fits[kind]
             xs = [0.0, max(s3) * 1.1]
             ax.plot(xs, [a / 1e6 + b * x for x in xs], "-", color=line.get_color(),

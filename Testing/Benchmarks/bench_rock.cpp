@@ -22,7 +22,11 @@
 //     triaxial tests at absolute confining stresses on a box (rigid walls) and on a cylinder
 //     carved from the same pack (Confinement Membrane), both cemented alike; each prints its
 //     peaks and Mohr-Coulomb fit ("envelope" lines, read by scripts/plot_envelopes.py);
-//     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test.
+//     --dump writes DIR/membrane_failed.csv, the cylinder after its highest-stress test, with
+//     each grain's displacement to the start of shear, the peak and the fall to 90 % of it and
+//     the bonds broken after the peak (scripts/plot_localisation.py), and a "membrane frames"
+//     line; --triaxial-stop F (default 0.8) runs a triaxial test after its peak until the
+//     stress has fallen to F x the peak (or Max Strain), to see the deformation later.
 //   rockdem_bench_rock --tests tsmap --safeties 0.05,0.3,1,2 --bond-ratios 0.1,1,10,100 [--rate-factor 16]
 //   rockdem_bench_rock --tests servomap --dampings 0,0.7,0.95 --servo-alphas 0.05,0.5,1 [--rate-factor 16]
 //     the stability map of Documentation/SpeedAccuracy.md: tsmap, unconfined tests at each
@@ -104,6 +108,7 @@ struct Options {
   double bondModulus = 0.0;     // Pa; 0: --modulus
   double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
   double maxSteps = 0.0;        // > 0: a test stops after this many steps
+  double triaxialStop = 0.8;    // a triaxial test stops when its stress falls to this fraction of the peak
   bool probeToMaxStrain = false; // --tests stability: run every test to Max Strain (no stop after the peak)
   std::vector<double> safeties{ 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5 }; // --tests stability
   std::vector<double> bondRatios{ 0.1, 1.0, 10.0, 100.0 };                // x --modulus
@@ -135,7 +140,7 @@ Options parse(int argc, char** argv)
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
     { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
-    { "--min-peak-strain", &o.minPeakStrain } };
+    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -181,6 +186,11 @@ Options parse(int argc, char** argv)
       std::fprintf(stderr, "\n");
       std::exit(2);
     }
+  }
+  if (!(o.triaxialStop > 0.0 && o.triaxialStop < 1.0)) {
+    std::fprintf(stderr, "--triaxial-stop = %g is out of range: valid range is (0, 1) (a fraction of the peak)\n",
+                 o.triaxialStop);
+    std::exit(2);
   }
   return o;
 }
@@ -561,6 +571,42 @@ DfnReading readDfn(const Model& m)
   return r;
 }
 
+/// The specimen a test leaves, for --dump: the model at the end (its displacements those of
+/// the test only) and two earlier frames, to read the deformation after the peak (the
+/// increment from the peak, or from 90 % of it, to the end) rather than the cumulative
+/// damage: each grain's displacement from the start of the test to the start of the shear
+/// stage (the first sample of it: the end of the consolidation), to the peak and to the first
+/// sample after it where the stress has fallen to 90 % of the peak, which bonds were broken
+/// at the peak, and (under the membrane) which grains formed the surface at the start of the
+/// shear stage, the peak and the end.
+struct FailedSpecimen {
+  Model end;
+  std::vector<Vec3> toShear, toPeak, toFall;  // m, displacement during the test (toFall empty: never at 90 %)
+  std::vector<std::uint8_t> brokenAtPeak;     // per bond
+  std::vector<std::uint8_t> surface;          // per grain: 1 at the start of shear, 2 at the peak, 4 at the end
+  double peakStrain = 0.0, fallStrain = 0.0, endStrain = 0.0;
+  double peakStress = 0.0, fallStress = 0.0, endStress = 0.0; // Pa
+};
+
+/// Sets `bit` in `surface` for every grain the membrane pushes now (nothing without a membrane).
+void markSurface(const Model& m, std::vector<std::uint8_t>& surface, std::uint8_t bit)
+{
+  surface.resize(m.particles.size(), 0);
+  for (std::uint8_t& s : surface) {
+    s &= static_cast<std::uint8_t>(~bit);
+  }
+  if (!membraneActive(m)) {
+    return;
+  }
+  std::vector<Vec3> forces;
+  membraneSurface(m, &forces);
+  for (std::size_t i = 0; i < forces.size() && i < surface.size(); ++i) {
+    if (forces[i].squaredNorm() > 0.0) {
+      surface[i] |= bit;
+    }
+  }
+}
+
 /// The stop rule's smallest peak strain: a peak before it (the stress oscillation at the
 /// start of an undamped test) does not end a test when the stress falls after it.
 double minPeakStrain(const Options& o)
@@ -572,7 +618,7 @@ double minPeakStrain(const Options& o)
 /// tension; a peak at --min-peak-strain or later), the shear stage's max strain, or the
 /// test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
-                   Confinement confinement = Confinement::RigidWalls, Model* failed = nullptr)
+                   Confinement confinement = Confinement::RigidWalls, FailedSpecimen* failed = nullptr)
 {
   const Model start0 = m;
   TestResult r;
@@ -601,7 +647,19 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   r.timestep = sim.timestep();
   startLoadTest(m, s); // again, with the rate that gives the strain per step
   const std::vector<Vec3> startPosition = m.particles.position; // for the dump's displacements
+  const auto displacementSinceStart = [&]() {
+    std::vector<Vec3> u(m.particles.size());
+    for (std::size_t i = 0; i < u.size() && i < startPosition.size(); ++i) {
+      u[i] = m.particles.position[i] - startPosition[i];
+    }
+    return u;
+  };
   Simulation run(m);
+  if (failed) {
+    failed->surface.clear();
+    failed->toFall.clear();
+    failed->toShear.clear();
+  }
   std::vector<double> strain, stress, lateral, gauge, ufr;
   std::size_t peakSample = 0;
   BreakTracker breaks(m);
@@ -614,6 +672,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     if (m.test.stage != TestStage::Shear) {
       continue;
+    }
+    if (failed && failed->toShear.empty()) {
+      failed->toShear = displacementSinceStart(); // the first sample of the shear stage
+      markSurface(m, failed->surface, 1);
     }
     const TestMeasurements me = run.measurements();
     const double sign = mode == TestMode::Tension ? -1.0 : 1.0;
@@ -638,14 +700,34 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       }
       r.inertialAtPeak = me.inertialNumber;
       peakSample = ufr.size();
+      if (failed) {
+        failed->toPeak = displacementSinceStart();
+        failed->brokenAtPeak.assign(m.bonds.size(), 0);
+        for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+          failed->brokenAtPeak[k] = m.bonds.broken(k) ? 1 : 0;
+        }
+        markSurface(m, failed->surface, 2);
+        failed->peakStrain = e;
+        failed->peakStress = sigma;
+        failed->toFall.clear(); // a new peak: the fall to 90 % is still to come
+      }
+    }
+    if (failed && failed->toFall.empty() && r.peak > 0.0 && sigma <= 0.9 * r.peak && e > r.peakStrain) {
+      failed->toFall = displacementSinceStart();
+      failed->fallStrain = e;
+      failed->fallStress = sigma;
+    }
+    if (failed) {
+      failed->endStrain = e;
+      failed->endStress = sigma;
     }
     const bool peakCounts = r.peak > 0.0 && r.peakStrain >= minPeakStrain(o);
     if (mode != TestMode::Triaxial && peakCounts && sigma < 0.7 * r.peak && e > r.peakStrain) {
       fallen = true;
       r.strainAt70 = e;
     }
-    if (mode == TestMode::Triaxial && peakCounts && sigma < 0.8 * r.peak && e > r.peakStrain) {
-      fallen = true; // past the peak: the envelope needs only the peak
+    if (mode == TestMode::Triaxial && peakCounts && sigma < o.triaxialStop * r.peak && e > r.peakStrain) {
+      fallen = true; // past the peak: the envelope needs only the peak (--triaxial-stop, default 80 %)
     }
   }
   r.peaked = fallen;
@@ -680,11 +762,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   }
   r.seconds = secondsSince(start);
   if (failed) {
-    *failed = m;
+    failed->end = m;
     // The displacements of this test only (slots do not change during a test).
-    for (std::size_t i = 0; i < failed->particles.size() && i < startPosition.size(); ++i) {
-      failed->particles.displacement[i] = failed->particles.position[i] - startPosition[i];
-    }
+    failed->end.particles.displacement = displacementSinceStart();
+    markSurface(m, failed->surface, 4);
   }
   return r;
 }
@@ -760,31 +841,63 @@ BrazilianRun runBrazilian(Model m, const Options& o)
   return r;
 }
 
-/// Writes the failed membrane specimen for scripts/plot_envelopes.py: one line per
-/// particle (x, y, z, radius, and its displacement during the test dx, dy, dz; m) and per
-/// broken bond (kind tension or shear, its failure position).
-void dumpSpecimen(const Model& m, const std::string& path)
+/// Writes a failed specimen for scripts/plot_envelopes.py and scripts/plot_localisation.py:
+/// one line per particle (x, y, z, radius at the end; its displacement during the test dx,
+/// dy, dz; to the peak px, py, pz; to the fall to 90 % of the peak fx, fy, fz, or the end's
+/// when the stress never fell that far; to the start of the shear stage sx, sy, sz; m;
+/// `surface`, the membrane's surface grain at the start of shear 1, peak 2, end 4, summed) and per broken bond (kind tension or shear, its failure
+/// position; `after_peak` 1 when it broke after the peak). Written to a temporary file and
+/// renamed, so a failed write leaves no half file.
+void dumpSpecimen(const FailedSpecimen& s, const std::string& path)
 {
-  FILE* f = std::fopen(path.c_str(), "w");
+  const Model& m = s.end;
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f) {
-    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    std::fprintf(stderr, "cannot write %s\n", tmp.c_str());
     return;
   }
-  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz\n");
+  std::fprintf(f, "kind,x,y,z,radius,dx,dy,dz,px,py,pz,fx,fy,fz,sx,sy,sz,surface,after_peak\n");
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     const Vec3& x = m.particles.position[i];
     const Vec3& u = m.particles.displacement[i];
-    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", x.x(), x.y(), x.z(), m.particles.radius[i],
-                 u.x(), u.y(), u.z());
+    const Vec3 p = i < s.toPeak.size() ? s.toPeak[i] : u;
+    const Vec3 q = i < s.toFall.size() ? s.toFall[i] : u;
+    const Vec3 c = i < s.toShear.size() ? s.toShear[i] : Vec3(0.0, 0.0, 0.0);
+    std::fprintf(f, "particle,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,0\n",
+                 x.x(), x.y(), x.z(), m.particles.radius[i], u.x(), u.y(), u.z(), p.x(), p.y(), p.z(), q.x(), q.y(),
+                 q.z(), c.x(), c.y(), c.z(), i < s.surface.size() ? static_cast<int>(s.surface[i]) : 0);
   }
   for (std::size_t k = 0; k < m.bonds.size(); ++k) {
     if (m.bonds.broken(k)) {
       const Vec3& x = m.bonds.failurePosition[k];
       const bool tension = m.bonds.failure[k] == static_cast<std::uint8_t>(BondFailure::Tension);
-      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0\n", tension ? "tension" : "shear", x.x(), x.y(), x.z());
+      const bool afterPeak = k >= s.brokenAtPeak.size() || !s.brokenAtPeak[k];
+      std::fprintf(f, "%s,%.9g,%.9g,%.9g,0,0,0,0,0,0,0,0,0,0,0,0,0,0,%d\n", tension ? "tension" : "shear", x.x(), x.y(),
+                   x.z(), afterPeak ? 1 : 0);
     }
   }
+  const bool ok = std::fflush(f) == 0 && !std::ferror(f);
   std::fclose(f);
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+  }
+}
+
+/// The frames of a dump on one line: strain and stress at the peak, at the fall to 90 % of
+/// it and at the end, and the bonds broken by each.
+void printFrames(const char* label, const FailedSpecimen& s)
+{
+  std::size_t atPeak = 0;
+  for (std::uint8_t b : s.brokenAtPeak) {
+    atPeak += b;
+  }
+  std::printf("%s frames: peak strain %.5g stress %.5g Pa (%zu bonds broken); 90 %% %s strain %.5g stress %.5g Pa; "
+              "end strain %.5g stress %.5g Pa (%zu broken of %zu)\n",
+              label, s.peakStrain, s.peakStress, atPeak, s.toFall.empty() ? "not reached, end" : "at",
+              s.toFall.empty() ? s.endStrain : s.fallStrain, s.toFall.empty() ? s.endStress : s.fallStress,
+              s.endStrain, s.endStress, countBonds(s.end.bonds).broken, s.end.bonds.size());
 }
 
 /// One run of the stability map: a test at Timestep Safety `safety` (above 1: that multiple
@@ -981,7 +1094,7 @@ int main(int argc, char** argv)
 
   double ucs = 0.0;
   if (wants(o, "ucs")) {
-    Model failed;
+    FailedSpecimen failed;
     const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed);
     if (!o.dump.empty()) {
       dumpSpecimen(failed, o.dump + "/ucs_failed.csv"); // the frame at 70 % of the peak
@@ -1102,7 +1215,7 @@ int main(int argc, char** argv)
       }
       std::vector<double> s3, s1;
       for (std::size_t k = 0; k < o.sigma3.size(); ++k) {
-        Model failed;
+        FailedSpecimen failed;
         const bool last = k + 1 == o.sigma3.size();
         const TestResult t = runTest(spec, TestMode::Triaxial, o.sigma3[k], o, false,
                                      cylinder ? Confinement::Membrane : Confinement::RigidWalls,
@@ -1113,12 +1226,13 @@ int main(int argc, char** argv)
                     o.sigma3[k], t.peak, t.peakStrain, t.broken, t.peaked ? "peak" : "no-peak",
                     static_cast<long long>(t.steps), t.seconds);
         if (cylinder && last) {
-          const MembraneSurface ms = membraneSurface(failed);
+          const MembraneSurface ms = membraneSurface(failed.end);
           std::printf("membrane after the test at %.4g Pa: radius %.5g m, spread %.4g m (%.2f %%), min %.5g, max %.5g m\n",
                       o.sigma3[k], ms.radius, ms.radiusSpread, 100.0 * ms.radiusSpread / ms.radius, ms.minRadius,
                       ms.maxRadius);
           if (!o.dump.empty()) {
             dumpSpecimen(failed, o.dump + "/membrane_failed.csv");
+            printFrames("membrane", failed);
           }
         }
         std::fflush(stdout);
