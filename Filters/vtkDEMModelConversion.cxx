@@ -571,6 +571,7 @@ void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output)
   AddField(fd, "DomainSize", { d.size.x(), d.size.y(), d.size.z() });
   AddIntField(fd, "DomainPeriodic", { d.periodic[0], d.periodic[1], d.periodic[2] });
   AddIntField(fd, "Section2D", { d.section2D ? 1 : 0 });
+  AddIntField(fd, "CylinderAxis", { d.cylinderAxis });
   AddField(fd, "Density", { m.density });
   AddField(fd, "YoungsModulus", { m.youngsModulus });
   AddField(fd, "PoissonsRatio", { m.poissonsRatio });
@@ -846,6 +847,9 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
     model.gravity[k] = Field(fd, "Gravity", k, 3);
   }
   model.domain.section2D = IntField(fd, "Section2D") != 0;
+  // Data written before the specimen outline: a box.
+  model.domain.cylinderAxis =
+    fd->GetAbstractArray("CylinderAxis") ? static_cast<int>(IntField(fd, "CylinderAxis")) : -1;
   model.material.density = Field(fd, "Density");
   model.material.youngsModulus = Field(fd, "YoungsModulus");
   model.material.poissonsRatio = Field(fd, "PoissonsRatio");

@@ -284,6 +284,13 @@ void validate(const Domain& domain)
     throw InputError("Periodic Z = on cannot be combined with 2D Section (XY) = on: a section "
                      "has no motion along Z to wrap. Turn Periodic Z off.");
   }
+  const bool axisValid = domain.section2D ? (domain.cylinderAxis == -1 || domain.cylinderAxis == 2)
+                                          : (domain.cylinderAxis >= -1 && domain.cylinderAxis <= 2);
+  if (!axisValid) {
+    throw InputError("Cylinder Axis = " + std::to_string(domain.cylinderAxis) + " is out of range: valid values are " +
+                     (domain.section2D ? std::string("-1 (a box) and 2 (a disc in the XY plane of a 2D section).")
+                                       : std::string("-1 (a box), 0 (X), 1 (Y) and 2 (Z).")));
+  }
 }
 
 void validate(const Material& material)

@@ -337,10 +337,12 @@ TestMeasurements Simulation::measurements() const
   const bool planar = d.section2D;
   TestMeasurements m;
   const std::array<double, 3> length = specimenLengths(model_);
-  // A membrane cylinder: its cross-section is pi R^2, not the product of two lengths.
+  // A membrane cylinder: its cross-section is the membrane's pi R^2. Otherwise the
+  // specimen's outline (a box, or a cylinder carved by DEM Specimen: pi/4 of the product
+  // of its two lateral lengths across its axis).
   const MembraneSurface membrane = membraneSurface(model_);
-  const bool cylinder = membrane.crossSection > 0.0;
-  const double volume = cylinder ? membrane.crossSection * length[s.axis] : length[0] * length[1] * length[2];
+  const bool membraneOn = membrane.crossSection > 0.0;
+  const double volume = membraneOn ? membrane.crossSection * length[s.axis] : specimenVolume(d, length);
   for (int k = 0; k < 3; ++k) {
     const double l0 = t.initialLength[k] > 0.0 ? t.initialLength[k] : d.size[k];
     m.strain[k] = (planar && k == 2) ? 0.0 : (l0 - length[k]) / l0;
@@ -355,9 +357,8 @@ TestMeasurements Simulation::measurements() const
   // Face stresses from the wall reactions over the current face areas.
   for (int w = 0; w < 6; ++w) {
     const Wall& wall = model_.walls[w];
-    const int b = (wall.axis + 1) % 3;
-    const int c = (wall.axis + 2) % 3;
-    const double area = cylinder && wall.axis == s.axis ? membrane.crossSection : length[b] * length[c];
+    const double area = membraneOn && wall.axis == s.axis ? membrane.crossSection
+                                                          : crossSectionArea(d, length, wall.axis);
     m.faceStress[w] = wall.active && area > 0.0 ? -wall.force.dot(wall.normal()) / area : 0.0;
   }
   // Love-Weber: sigma = -(1/V) sum over particles and their contacts of (x_c - x_p) (x) f_c.
@@ -412,7 +413,7 @@ TestMeasurements Simulation::measurements() const
         pull += (im.undampedForce[i] - p.mass[i] * model_.gravity)[a];
       }
     }
-    const double area = length[(a + 1) % 3] * length[(a + 2) % 3];
+    const double area = crossSectionArea(d, length, a);
     m.axialStress = area > 0.0 ? pull / area : 0.0; // negative in tension
   } else if (s.mode == TestMode::Brazilian) {
     // The disc's Brazilian stress 2 P / (pi D t), P the mean push of the two platens.
@@ -432,7 +433,7 @@ TestMeasurements Simulation::measurements() const
     }
   }
   m.lateralStress = sides > 0 ? lateral / sides : 0.0;
-  if (cylinder) {
+  if (membraneOn) {
     // The membrane: its forces summed over the lateral surface, over that surface's area.
     m.lateralStress = membrane.force / membrane.lateralArea;
   }

@@ -210,6 +210,9 @@ SpecimenReport carveSpecimen(Model& model, const SpecimenSettings& s)
   d.origin = lo;
   d.size = hi - lo;
   d.periodic = { { false, false, false } };
+  // The outline the press measures areas with: a cylinder (a disc is a short one; in a
+  // 2D section a disc about Z) or the box itself.
+  d.cylinderAxis = s.shape == SpecimenShape::Box ? -1 : s.axis;
   double shapeVolume = 0.0; // m^3
   if (s.shape == SpecimenShape::Box) {
     shapeVolume = 8.0 * half.x() * half.y() * half.z();

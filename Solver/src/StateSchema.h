@@ -88,6 +88,11 @@ void visitModel(IO& io, Model& m)
   io.vec3("settings/domain/size", m.domain.size, "m");
   io.flags3("settings/domain/periodic", m.domain.periodic);
   io.u8flag("settings/domain/section_2d", m.domain.section2D);
+  if (io.has("settings/domain/cylinder_axis")) {
+    io.i32("settings/domain/cylinder_axis", m.domain.cylinderAxis, "1");
+  } else {
+    m.domain.cylinderAxis = -1; // files written before the outline: a box
+  }
   io.f64("settings/material/density", m.material.density, "kg/m^3");
   io.f64("settings/material/youngs_modulus", m.material.youngsModulus, "Pa");
   io.f64("settings/material/poissons_ratio", m.material.poissonsRatio, "1");

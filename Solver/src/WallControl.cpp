@@ -10,6 +10,10 @@
 
 namespace dem {
 
+namespace {
+constexpr double Pi = 3.14159265358979323846;
+} // namespace
+
 std::array<double, 3> specimenLengths(const Model& model)
 {
   // Between the walls where they are active (or driven, as the tension platen); on the
@@ -44,6 +48,18 @@ std::array<double, 3> specimenLengths(const Model& model)
     }
   }
   return length;
+}
+
+double crossSectionArea(const Domain& domain, const std::array<double, 3>& length, int axis)
+{
+  const double product = length[(axis + 1) % 3] * length[(axis + 2) % 3];
+  return domain.cylinderAxis == axis ? 0.25 * Pi * product : product;
+}
+
+double specimenVolume(const Domain& domain, const std::array<double, 3>& length)
+{
+  const double product = length[0] * length[1] * length[2];
+  return domain.cylinderAxis >= 0 ? 0.25 * Pi * product : product;
 }
 
 void controlWalls(Model& model, double dt, double smallestRadius)
@@ -82,9 +98,8 @@ void controlWalls(Model& model, double dt, double smallestRadius)
         length = specimenLengths(model);
         lengthKnown = true;
       }
-      const int b = (w.axis + 1) % 3;
-      const int c = (w.axis + 2) % 3;
-      const double area = membraneSection > 0.0 && w.axis == a ? membraneSection : length[b] * length[c];
+      const double area = membraneSection > 0.0 && w.axis == a ? membraneSection
+                                                                 : crossSectionArea(model.domain, length, w.axis);
       w.velocity = servoWallVelocity(w.elasticForce, w.contactStiffness, area, s.confiningStress,
                                      s.servoAlpha, dt, maxSpeed, w.side);
     } else if (platenMoving && w.axis == a && w.side == 1) {

@@ -9,6 +9,7 @@
 #include <vtkCellData.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
@@ -171,7 +172,8 @@ vtkPolyData* BondsBlock(vtkMultiBlockDataSet* mb)
 
 TEST(ModelConversion, RoundTripIsBitwiseLossless)
 {
-  const dem::Model model = SamplePack();
+  dem::Model model = SamplePack();
+  model.domain.cylinderAxis = 0; // a cylinder along X: the outline travels with the model
   vtkNew<vtkMultiBlockDataSet> mb;
   rockdem::ModelToMultiBlock(model, mb);
   const dem::Model back = rockdem::MultiBlockToModel(mb);
@@ -213,6 +215,7 @@ TEST(ModelConversion, RoundTripIsBitwiseLossless)
   EXPECT_EQ(model.domain.size, back.domain.size);
   EXPECT_EQ(model.domain.periodic, back.domain.periodic);
   EXPECT_EQ(model.domain.section2D, back.domain.section2D);
+  EXPECT_EQ(model.domain.cylinderAxis, back.domain.cylinderAxis);
   EXPECT_EQ(model.material.density, back.material.density);
   EXPECT_EQ(model.material.youngsModulus, back.material.youngsModulus);
   EXPECT_EQ(model.material.poissonsRatio, back.material.poissonsRatio);
@@ -224,6 +227,17 @@ TEST(ModelConversion, RoundTripIsBitwiseLossless)
   EXPECT_EQ(model.clock.step, back.clock.step);
   EXPECT_EQ(model.nextId, back.nextId);
   EXPECT_TRUE(model.random == back.random);
+}
+
+TEST(ModelConversion, DataWithoutTheCylinderAxisReadsAsABox)
+{
+  dem::Model model = SamplePack();
+  model.domain.cylinderAxis = 2;
+  vtkNew<vtkMultiBlockDataSet> mb;
+  rockdem::ModelToMultiBlock(model, mb);
+  EXPECT_EQ(rockdem::MultiBlockToModel(mb).domain.cylinderAxis, 2);
+  mb->GetFieldData()->RemoveArray("CylinderAxis"); // data saved before the outline existed
+  EXPECT_EQ(rockdem::MultiBlockToModel(mb).domain.cylinderAxis, -1);
 }
 
 TEST(ModelConversion, ParticlesBlockCarriesTheDocumentedArrays)

@@ -174,6 +174,131 @@ TEST(Specimen, CarvedSpecimenRunsAndTests)
   EXPECT_EQ(m.test.stage, TestStage::Shear);
 }
 
+namespace {
+
+/// The particles' extent along axis k (m): their surfaces, min to max.
+double extent(const Model& m, int k)
+{
+  double lo = 1e300;
+  double hi = -1e300;
+  for (std::size_t i = 0; i < m.particles.size(); ++i) {
+    lo = std::min(lo, m.particles.position[i][k] - m.particles.radius[i]);
+    hi = std::max(hi, m.particles.position[i][k] + m.particles.radius[i]);
+  }
+  return hi - lo;
+}
+
+/// Runs `steps` steps of a load test and returns the press's measurements.
+TestMeasurements runTest(Model& m, const LoadTestSettings& s, int steps)
+{
+  startLoadTest(m, s);
+  Simulation sim(m);
+  sim.advance(steps);
+  return sim.measurements();
+}
+
+} // namespace
+
+TEST(Specimen, CarvingSetsTheOutlineThePressMeasuresWith)
+{
+  const Model pack = specimen(1500, 0.02, 0.0005, 0.0008, 3);
+  EXPECT_EQ(pack.domain.cylinderAxis, -1); // a pack is a box
+  for (int axis = 0; axis < 3; ++axis) {
+    SpecimenSettings s;
+    s.shape = axis == 1 ? SpecimenShape::Disc : SpecimenShape::Cylinder;
+    s.axis = axis;
+    s.diameter = 0.012;
+    s.length = axis == 1 ? 0.006 : 0.018;
+    Model m = pack;
+    carveSpecimen(m, s);
+    EXPECT_EQ(m.domain.cylinderAxis, axis) << specimenShapeName(s.shape) << " along " << axis;
+    SpecimenSettings box;
+    box.shape = SpecimenShape::Box;
+    box.size = Vec3(0.004, 0.004, 0.004);
+    carveSpecimen(m, box); // a box carved out of the cylinder is a box again
+    EXPECT_EQ(m.domain.cylinderAxis, -1);
+  }
+  const Model section = section2DPack(800, 0.03, 0.001, 0.0004, 0.0006, 2);
+  SpecimenSettings disc;
+  disc.shape = SpecimenShape::Disc;
+  disc.diameter = 0.024;
+  Model d = section;
+  carveSpecimen(d, disc);
+  EXPECT_EQ(d.domain.cylinderAxis, 2); // a 2D disc: a cylinder along Z through the slab
+}
+
+// A carved cylinder's axial stress is the platen force over its circular cross-section,
+// pi D^2 / 4 (ISRM 1979, the suggested method for the UCS of cylinders), not over the
+// square D^2 of its bounding box: the same model measured as a box reads pi/4 of it.
+TEST(Specimen, CompressionOfACylinderDividesThePlatenForceByItsCircularSection)
+{
+  Model cylinder = specimen(1500, 0.02, 0.0005, 0.0008, 3);
+  SpecimenSettings s;
+  s.diameter = 0.012;
+  s.length = 0.018;
+  carveSpecimen(cylinder, s);
+  ASSERT_EQ(cylinder.domain.cylinderAxis, 2);
+  Model box = cylinder;
+  box.domain.cylinderAxis = -1; // the same grains, measured as a box
+  LoadTestSettings ucs;
+  ucs.mode = TestMode::Compression;
+  ucs.strainRate = 2.0;
+  const TestMeasurements c = runTest(cylinder, ucs, 1500);
+  const TestMeasurements b = runTest(box, ucs, 1500);
+  ASSERT_GT(c.axialStress, 0.0);
+  // The outline changes what is measured, never the motion.
+  ASSERT_EQ(cylinder.particles.position, box.particles.position);
+  // Independently: the mean push of the two platens over the ellipse of the grains' extents.
+  const double push = -0.5 * (cylinder.walls[4].force.dot(cylinder.walls[4].normal()) +
+                              cylinder.walls[5].force.dot(cylinder.walls[5].normal()));
+  const double area = 0.25 * kPi * extent(cylinder, 0) * extent(cylinder, 1);
+  EXPECT_NEAR(c.axialStress, push / area, 0.01 * push / area);
+  // The grains whose centres lie within the carved diameter D reach out by up to their
+  // radius (0.8 mm at most): the section lies between pi/4 D^2 and pi/4 (D + 1.6 mm)^2.
+  EXPECT_GE(area, 0.25 * kPi * s.diameter * s.diameter);
+  EXPECT_LE(area, 0.25 * kPi * (s.diameter + 0.0016) * (s.diameter + 0.0016) * 1.01);
+  EXPECT_NEAR(c.axialStress / b.axialStress, 4.0 / kPi, 1e-12);
+  EXPECT_NEAR(c.faceStress[5] / b.faceStress[5], 4.0 / kPi, 1e-12);
+  // Love-Weber: the same internal forces over the cylinder's volume, pi/4 of the box's.
+  EXPECT_NEAR(c.stressTensor[2] / b.stressTensor[2], 4.0 / kPi, 1e-12);
+  EXPECT_NEAR(c.meanStress / b.meanStress, 4.0 / kPi, 1e-12);
+
+  // Across its axis the section through a cylinder's middle is the rectangle D x L: a
+  // cylinder along Y compressed along Z reads as the box does.
+  Model across = specimen(1500, 0.02, 0.0005, 0.0008, 3);
+  SpecimenSettings y = s;
+  y.axis = 1;
+  carveSpecimen(across, y);
+  Model acrossBox = across;
+  acrossBox.domain.cylinderAxis = -1;
+  const TestMeasurements ca = runTest(across, ucs, 1500);
+  const TestMeasurements ba = runTest(acrossBox, ucs, 1500);
+  ASSERT_GT(ca.axialStress, 0.0);
+  EXPECT_EQ(ca.axialStress, ba.axialStress);
+  EXPECT_NEAR(ca.meanStress / ba.meanStress, 4.0 / kPi, 1e-12); // its volume is still pi/4 of the box
+}
+
+TEST(Specimen, DirectTensionOfACylinderDividesThePullByItsCircularSection)
+{
+  Model cylinder = specimen(1500, 0.02, 0.0005, 0.0008, 3);
+  SpecimenSettings s;
+  s.diameter = 0.012;
+  s.length = 0.018;
+  carveSpecimen(cylinder, s);
+  cement(cylinder, dem::testing::testCement());
+  ASSERT_GT(cylinder.bonds.size(), 0u);
+  Model box = cylinder;
+  box.domain.cylinderAxis = -1;
+  LoadTestSettings pull;
+  pull.mode = TestMode::Tension;
+  pull.strainRate = 0.05;
+  const TestMeasurements c = runTest(cylinder, pull, 400);
+  const TestMeasurements b = runTest(box, pull, 400);
+  ASSERT_LT(c.axialStress, 0.0);
+  EXPECT_NEAR(c.axialStress / b.axialStress, 4.0 / kPi, 1e-12);
+  EXPECT_NEAR(cylinder.test.peakStress / box.test.peakStress, 4.0 / kPi, 1e-12); // Tensile Strength
+}
+
 TEST(Specimen, BadSpecimensAreRefusedNamingTheParameter)
 {
   const Model pack = specimen(300, 0.02, 0.001, 0.0015, 4);

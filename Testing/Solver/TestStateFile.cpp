@@ -68,6 +68,7 @@ Model everyFieldModel()
   Model m = dem::testing::specimen(150, 0.012, 0.0008, 0.0012, 5);
   m.domain.origin = Vec3(0.001, -0.002, 0.003);
   m.domain.periodic = { { false, true, false } };
+  m.domain.cylinderAxis = 1; // not the test's axis: a cylinder compressed across its axis
   m.material.poissonsRatio = 0.21;
   m.material.restitution = 0.37;
   m.material.friction = 0.61;
@@ -129,6 +130,7 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_EQ(std::memcmp(a.domain.size.data(), b.domain.size.data(), 24), 0);
   EXPECT_EQ(a.domain.periodic, b.domain.periodic);
   EXPECT_EQ(a.domain.section2D, b.domain.section2D);
+  EXPECT_EQ(a.domain.cylinderAxis, b.domain.cylinderAxis);
   EXPECT_EQ(std::memcmp(&a.material, &b.material, sizeof(Material)), 0);
   EXPECT_EQ(std::memcmp(a.gravity.data(), b.gravity.data(), 24), 0);
   EXPECT_EQ(a.solver.contactLaw, b.solver.contactLaw);
@@ -381,6 +383,27 @@ TEST(StateFile, PlatenFrictionIsSavedAndOlderFilesReadAsFrictionless)
   // A file written before Platen Friction existed: the platens were frictionless.
   const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "test/settings/platen_friction", H5P_DEFAULT); });
   EXPECT_EQ(readStateFromMemory(older.data(), older.size()).test.settings.platenFriction, 0.0);
+}
+
+TEST(StateFile, TheCylinderOutlineIsSavedOlderFilesReadAsABoxAndBadAxesAreRefused)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  m.domain.cylinderAxis = 2;
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  EXPECT_EQ(readStateFromMemory(image.data(), image.size()).domain.cylinderAxis, 2);
+  // A file written before the outline existed: every specimen was measured as a box.
+  const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "settings/domain/cylinder_axis", H5P_DEFAULT); });
+  EXPECT_EQ(readStateFromMemory(older.data(), older.size()).domain.cylinderAxis, -1);
+  // An axis that is none: refused, naming it and the valid values.
+  m.domain.cylinderAxis = 3;
+  const std::vector<unsigned char> bad = writeStateToMemory(m);
+  try {
+    readStateFromMemory(bad.data(), bad.size());
+    ADD_FAILURE() << "Cylinder Axis 3 was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("Cylinder Axis = 3 is out of range"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("-1 (a box), 0 (X), 1 (Y) and 2 (Z)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(StateFile, BondsWithoutTheMomentContributionReadAsFullMoments)

@@ -35,6 +35,11 @@ struct Domain {
   Vec3 size{ 0.1, 0.1, 0.1 };          ///< m, edge lengths; in 2D, size.z() is the slab thickness
   std::array<bool, 3> periodic{ { false, false, false } }; ///< join the two faces of an axis
   bool section2D = false;              ///< discs in the XY plane at mid-slab (z = origin.z + size.z/2)
+  /// The specimen's outline in the box: -1, the box itself; 0, 1, 2 (X, Y, Z): a cylinder
+  /// along that axis inscribed in the box, its cross-section the ellipse whose diameters
+  /// are the box's two other edges (DEM Specimen's Cylinder and Disc set it; a 2D disc is
+  /// a cylinder along Z). The press measures areas and volumes with it (crossSectionArea).
+  int cylinderAxis = -1;
 
   Vec3 upper() const { return origin + size; }
   double slabThickness() const { return size.z(); }

@@ -42,6 +42,17 @@ inline double servoWallVelocity(double elasticForce, double contactStiffness, do
 /// particles' extent.
 std::array<double, 3> specimenLengths(const Model& model);
 
+/// The specimen's cross-section across `axis` (m^2) from its lengths along X, Y, Z (m;
+/// specimenLengths): the product of the two other lengths for a box; for a cylinder along
+/// `axis` (Domain::cylinderAxis, DEM Specimen's Cylinder and Disc) the ellipse with those
+/// lengths as diameters, pi/4 of the product. Across any other axis the section through a
+/// cylinder's middle is a rectangle, the product.
+double crossSectionArea(const Domain& domain, const std::array<double, 3>& length, int axis);
+
+/// The specimen's volume (m^3) from its lengths (m): their product for a box, pi/4 of it
+/// for a cylinder (Domain::cylinderAxis >= 0; a 2D disc: pi/4 D^2 x the slab thickness).
+double specimenVolume(const Domain& domain, const std::array<double, 3>& length);
+
 /// Sets every wall's velocity for the coming step (servo law, platen, at rest) and, in a
 /// tension test, the velocity of the particles attached to the moving platen. `dt` (s):
 /// the timestep; `smallestRadius` (m): bounds a servo wall's speed to 0.2 % of it per step.
