@@ -1,6 +1,6 @@
 """RockDEM main job (pvbatch): the complete workflow on the default specimen.
 
-    xvfb-run -a pvbatch examples/main_job.py [--elements N] [--output DIR]
+    scripts/run_with_xvfb.sh pvbatch examples/main_job.py [--elements N] [--output DIR]
 
 pack (placed loose, then Compact Elements: radius expansion with relaxation to the Target
 Porosity) -> cement over an interaction range (DEM Cement, Bond Range) -> relax (Mode Off,

@@ -1,19 +1,73 @@
 #!/usr/bin/env bash
-# Runs a rendering command under xvfb-run (the main job, the pvbatch tests). xvfb-run -a
-# occasionally fails to bring up or reach its X server ("bad X server connection"); that
-# is retried (up to 3 times), any other failure is returned as is.
+# Runs a rendering command on a private Xvfb display: the main job, the pvbatch tests and
+# the GUI tests (Testing/GUI/run_gui_test.py).
+#
+#   scripts/run_with_xvfb.sh COMMAND [ARG...]      (screen: ROCKDEM_XVFB_SCREEN, default 1280x1024x24)
+#
+# It starts Xvfb itself rather than through xvfb-run -a:
+# - the X server picks a free display number itself (-displayfd), atomically, so that runs
+#   started at the same moment (ctest --parallel) never race for one number, as xvfb-run -a
+#   does (it looks for a free lock file, then starts the server);
+# - the server's standard streams are /dev/null and it inherits none of the command's
+#   output pipes: an X server left behind can never keep a caller (ctest, a pipe) waiting
+#   for the end of the output. Under xvfb-run the server inherited the pipe of the output
+#   copy, and one that outlived its run held a ctest run until the test's timeout;
+# - the server is stopped (and waited for) when the command ends, however it ends.
+# The command's output goes to this script's output, its exit status is returned. A server
+# that does not come up within 20 s, or a command that fails because it could not reach
+# the display, is retried (3 attempts in all); any other failure is returned as is.
 set -u
+screen="${ROCKDEM_XVFB_SCREEN:-1280x1024x24}"
+xvfb_pid=""
+
+stop_xvfb() {
+  if [ -n "$xvfb_pid" ]; then
+    kill "$xvfb_pid" 2>/dev/null
+    wait "$xvfb_pid" 2>/dev/null
+    xvfb_pid=""
+  fi
+}
+trap stop_xvfb EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+trap 'exit 129' HUP
+
+if ! command -v Xvfb > /dev/null; then
+  echo "run_with_xvfb: Xvfb not found (Debian package xvfb; bash scripts/install-deps.sh installs it)" >&2
+  exit 127
+fi
+
 for attempt in 1 2 3; do
+  numberfile=$(mktemp)
+  # fd 3 carries the display number once the server accepts connections.
+  Xvfb -displayfd 3 -screen 0 "$screen" -nolisten tcp 3> "$numberfile" < /dev/null > /dev/null 2>&1 &
+  xvfb_pid=$!
+  display=""
+  for _ in $(seq 200); do
+    display=$(tr -dc '0-9' < "$numberfile")
+    if [ -n "$display" ] || ! kill -0 "$xvfb_pid" 2> /dev/null; then
+      break
+    fi
+    sleep 0.1
+  done
+  rm -f "$numberfile"
+  if [ -z "$display" ] || ! kill -0 "$xvfb_pid" 2> /dev/null; then
+    echo "run_with_xvfb: Xvfb did not start on attempt $attempt, retrying" >&2
+    stop_xvfb
+    sleep 1
+    continue
+  fi
   log=$(mktemp)
-  xvfb-run -a "$@" > >(tee "$log") 2>&1
-  rc=$?
-  if [ $rc -ne 0 ] && grep -q -E "bad X server connection|cannot open display|Xvfb failed to start" "$log"; then
-    echo "run_with_xvfb: X server problem on attempt $attempt, retrying" >&2
+  DISPLAY=":$display" "$@" 2>&1 | tee "$log"
+  rc=${PIPESTATUS[0]}
+  if [ "$rc" -ne 0 ] && grep -q -E "bad X server connection|cannot open display|Can't open display" "$log"; then
+    echo "run_with_xvfb: the command could not reach display :$display on attempt $attempt, retrying" >&2
     rm -f "$log"
+    stop_xvfb
     sleep 1
     continue
   fi
   rm -f "$log"
-  exit $rc
+  exit "$rc"
 done
 exit 1

@@ -11,7 +11,8 @@ user settings), a 1600x1000 window on a 1600x1000 Xvfb screen, and a style sheet
 widens the Pipeline Browser and Properties panel (readable screenshots). The test passes
 when ParaView plays every event and exits with 0, the checks written by rockdem_gui.py
 (OUT/checks.txt) are all 'ok', there are at least --checks of them, and the last line
-is 'done'. xvfb-run failing to bring up its X server is retried (up to 3 times).
+is 'done'. It runs under scripts/run_with_xvfb.sh (a private Xvfb display); a server
+that does not come up, or a ParaView that cannot reach it, is retried (up to 3 times).
 """
 import argparse
 import os
@@ -61,7 +62,10 @@ def main():
     env.pop("PV_PLUGIN_PATH", None)
     if not args.load_plugin:
         env["PV_PLUGIN_PATH"] = os.path.dirname(args.plugin)
-    command = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", args.paraview, "--dr",
+    # A private X server (scripts/run_with_xvfb.sh: its own free display, no output pipe
+    # held by a server left behind, the server stopped when ParaView ends).
+    env["ROCKDEM_XVFB_SCREEN"] = "1600x1000x24"
+    command = [os.path.join(HERE, "..", "..", "scripts", "run_with_xvfb.sh"), args.paraview, "--dr",
                "-geometry", "1600x1000+0+0", "-stylesheet", style, "--test-script=" + script,
                "--test-directory=" + args.out, "--exit"]
     start = time.time()
@@ -69,7 +73,7 @@ def main():
         run = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                              universal_newlines=True, timeout=args.timeout)
         if run.returncode != 0 and any(s in run.stdout for s in (
-                "bad X server connection", "cannot open display", "Xvfb failed to start")):
+                "bad X server connection", "cannot open display", "Xvfb did not start")):
             print("run_gui_test: X server problem on attempt %d, retrying" % (attempt + 1))
             if os.path.exists(os.path.join(args.out, "checks.txt")):
                 os.remove(os.path.join(args.out, "checks.txt"))
