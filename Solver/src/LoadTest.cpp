@@ -338,9 +338,14 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
   if (settings.mode == TestMode::Compression || settings.mode == TestMode::Brazilian) {
     model.walls[2 * a + 1].velocity = -settings.strainRate * t.initialLength[a];
   }
-  if (membraneActive(model)) {
-    // The cylinder's starting diameter: twice the membrane's radius.
-    const double diameter = 2.0 * membraneSurface(model).radius;
+  const bool carvedCylinder = (settings.mode == TestMode::Compression || settings.mode == TestMode::Tension) &&
+    d.cylinderAxis == a && !d.section2D && !p.empty();
+  if (membraneActive(model) || carvedCylinder) {
+    // The cylinder's starting diameter: twice the membrane's radius, the mean outer reach
+    // of the surface grains (for an unconfined cylinder too: its grains' extent, which the
+    // one outermost grain on each side sets, exceeds it by up to a grain diameter). An
+    // unconfined side then follows the spread of the centres from there.
+    const double diameter = 2.0 * lateralSurface(model, a, 0.0).radius;
     t.initialLength[(a + 1) % 3] = diameter;
     t.initialLength[(a + 2) % 3] = diameter;
     t.initialVolume = t.initialLength[0] * t.initialLength[1] * t.initialLength[2];

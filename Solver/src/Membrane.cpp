@@ -25,17 +25,27 @@ bool membraneActive(const Model& model)
 
 MembraneSurface membraneSurface(const Model& model, std::vector<Vec3>* forces)
 {
-  MembraneSurface out;
   if (!membraneActive(model)) {
+    if (forces) {
+      forces->clear();
+    }
+    return MembraneSurface();
+  }
+  const LoadTestSettings& s = model.test.settings;
+  return lateralSurface(model, s.axis, s.confiningStress, forces);
+}
+
+MembraneSurface lateralSurface(const Model& model, int a, double pressure, std::vector<Vec3>* forces)
+{
+  MembraneSurface out;
+  const Particles& p = model.particles;
+  const std::size_t n = p.size();
+  if (n == 0 || model.walls.size() != 6 || a < 0 || a > 2) {
     if (forces) {
       forces->clear();
     }
     return out;
   }
-  const Particles& p = model.particles;
-  const std::size_t n = p.size();
-  const LoadTestSettings& s = model.test.settings;
-  const int a = s.axis;
   const int b = (a + 1) % 3;
   const int c = (a + 2) % 3;
   // The axis: through the centroid of the centres across it.
@@ -122,7 +132,6 @@ MembraneSurface membraneSurface(const Model& model, std::vector<Vec3>* forces)
   out.slices = slices;
   out.minRadius = std::numeric_limits<double>::max();
   out.maxRadius = 0.0;
-  const double pressure = s.confiningStress;                        // Pa
   const double arcPerRadius = 2.0 * Pi / static_cast<double>(sectors); // rad
   const double sliceLength = length / static_cast<double>(slices);     // m
   double sumReach = 0.0;

@@ -52,6 +52,14 @@ bool membraneActive(const Model& model);
 /// active. Serial, slot order.
 MembraneSurface membraneSurface(const Model& model, std::vector<Vec3>* forces = nullptr);
 
+/// The lateral surface of a cylindrical specimen along axis `a` between its platens (walls
+/// 2a and 2a + 1), found as the membrane finds it (the bins, each bin's outermost grain),
+/// with `pressure` (Pa) on it: its `radius` is the mean outer reach of the surface grains,
+/// the radius the press measures a cylinder's section with, under the membrane and in an
+/// unconfined test alike. With `forces` as membraneSurface. Zeros without particles or
+/// walls. Serial, slot order.
+MembraneSurface lateralSurface(const Model& model, int a, double pressure, std::vector<Vec3>* forces = nullptr);
+
 /// Throws InputError naming Confinement unless the model can be confined by a membrane for
 /// `settings` (Confinement Membrane): a 3D model whose particles form a cylinder along Axis
 /// (every centre within half the smaller lateral extent of the axis through the middle of
