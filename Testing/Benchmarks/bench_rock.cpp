@@ -49,8 +49,8 @@
 //   --tests ucs,tension --specimen cylinder|both: the unconfined and direct tension tests (and
 //     the localisation figures, the DFN, --dump's DIR/ucs_failed_cylinder.csv) also, or only, on
 //     the cylinder that --tests envelopes carves (diameter = the box's width, length = its
-//     height, cut before the cement, so that its side and ends are carved surfaces, not
-//     wall-ordered ones); the box's lines are labelled "box", the cylinder's "cylinder".
+//     height, cut before the cement: its curved side is a carved surface, its ends the pack's
+//     walled faces); the box's lines are as before, the cylinder's start with "cylinder".
 //   --carve-margin M (mean grain diameters, default 0): the pack a cylinder is carved from is
 //     the box specimen's pack widened by M nominal mean diameters (rmin + rmax) on each side
 //     face (holding proportionally more grains; the same height: the ends stay the pack's flat
@@ -269,8 +269,8 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   if (carve != Carve::None) {
     // Carved before the cement as in the laboratory workflow (Documentation/Specimens.md):
     // the cylinder of the box specimen's width and height at the pack's centre (inscribed in
-    // it without --carve-margin; its ends are the pack's end faces either way), or the Brazilian disc at the box's centre (diameter = width,
-    // thickness = width / 2, axis Z).
+    // it without --carve-margin; its ends are the pack's end faces either way), or the
+    // Brazilian disc at the box's centre (diameter = width, thickness = width / 2, axis Z).
     SpecimenSettings shape;
     shape.shape = carve == Carve::Cylinder ? SpecimenShape::Cylinder : SpecimenShape::Disc;
     shape.axis = 2;
