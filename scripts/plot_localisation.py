@@ -5,6 +5,8 @@ failure"): the deformation after the peak rather than the cumulative cracks.
     scripts/plot_localisation.py DIR/membrane_failed.csv -o PREFIX [--title TEXT]
 
 Reads the dump of `rockdem_bench_rock --tests envelopes --specimen cylinder --dump DIR`
+(or, with --outer-layer, DIR/ucs_failed_cylinder.csv of `--tests ucs --specimen cylinder`: the
+outer grain layer then stands for the membrane's surface grains)
 (one line per grain: position at the end, displacement during the test d, to the start of
 the shear stage s, to the peak p, to the fall to 90 % of the peak f, membrane surface flags;
 one line per broken bond with `after_peak`) and writes
@@ -118,12 +120,21 @@ def main():
     parser.add_argument("--title", default="Membrane cylinder after the peak")
     parser.add_argument("--from", dest="start", choices=("peak", "fall"), default="peak",
                         help="the increment from the peak (default) or from the fall to 90 %% of it, to the end")
+    parser.add_argument("--outer-layer", action="store_true",
+                        help="a cylinder without a membrane (rockdem_bench_rock --tests ucs --specimen cylinder): "
+                             "take its outer grain layer (centre at the start within one mean diameter of the "
+                             "outermost, about the axis) as the surface grains")
     args = parser.parse_args()
     g, b = read_dump(args.dump)
     pos = g[:, 0:3]
     radius = g[:, 3]
     d, p, f = g[:, 4:7], g[:, 7:10], g[:, 10:13]
     flags = g[:, 13].astype(int)
+    if args.outer_layer:
+        start = pos - d  # where the grains were at the start of the test
+        axis = 0.5 * (start[:, 0:2].min(axis=0) + start[:, 0:2].max(axis=0))
+        r0 = np.hypot(start[:, 0] - axis[0], start[:, 1] - axis[1])
+        flags = np.where(r0.max() - r0 < 2.0 * float(radius.mean()), 7, 0)
     shear = g[:, 14:17]  # zeros in a dump without the frame: the start of the test then
     diameter = 2.0 * float(radius.mean())
     centre = pos.mean(axis=0)

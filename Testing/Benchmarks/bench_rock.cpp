@@ -46,6 +46,16 @@
 //     that the stress oscillation at the start of an undamped test does not end it.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
 //     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
+//   --tests ucs,tension --specimen cylinder|both: the unconfined and direct tension tests (and
+//     the localisation figures, the DFN, --dump's DIR/ucs_failed_cylinder.csv) also, or only, on
+//     the cylinder that --tests envelopes carves (diameter = the box's width, length = its
+//     height, cut before the cement: its curved side is a carved surface, its ends the pack's
+//     walled faces); the box's lines are as before, the cylinder's start with "cylinder".
+//   --carve-margin M (mean grain diameters, default 0): the pack a cylinder is carved from is
+//     the box specimen's pack widened by M nominal mean diameters (rmin + rmax) on each side
+//     face (holding proportionally more grains; the same height: the ends stay the pack's flat
+//     walled faces, as ground ends), so that the cylinder's curved side touches no wall;
+//     0: the cylinder inscribed in the box specimen's own pack, as before.
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -118,7 +128,8 @@ struct Options {
   std::vector<double> confining{ 0.05, 0.1, 0.2 }; // x UCS
   std::vector<double> sigma3{ 1e6, 2e6, 4e6 };     // Pa, --tests envelopes
   std::vector<double> rateFactors;                 // --tests rates: x the Suggested Strain Rate
-  std::string specimen = "box";                    // box, cylinder, both (--tests envelopes)
+  std::string specimen = "box";                    // box, cylinder, both (--tests envelopes, ucs, tension)
+  double carveMargin = 0.0;                        // mean diameters of pack around a carved cylinder
   std::string dump;                                // directory for membrane_failed.csv
   std::uint64_t seed = 1;
   int threads = 0;
@@ -140,7 +151,8 @@ Options parse(int argc, char** argv)
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
     { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
-    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop } };
+    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop },
+    { "--carve-margin", &o.carveMargin } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -179,7 +191,7 @@ Options parse(int argc, char** argv)
       o.lengthStiffness = true;
     } else {
       std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
-                           " [--seed S] [--threads T] [--profile]", argv[0]);
+                           " [--specimen box|cylinder|both] [--seed S] [--threads T] [--profile]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
       }
@@ -190,6 +202,14 @@ Options parse(int argc, char** argv)
   if (!(o.triaxialStop > 0.0 && o.triaxialStop < 1.0)) {
     std::fprintf(stderr, "--triaxial-stop = %g is out of range: valid range is (0, 1) (a fraction of the peak)\n",
                  o.triaxialStop);
+    std::exit(2);
+  }
+  if (o.specimen != "box" && o.specimen != "cylinder" && o.specimen != "both") {
+    std::fprintf(stderr, "--specimen = %s: valid values are box, cylinder, both\n", o.specimen.c_str());
+    std::exit(2);
+  }
+  if (!(o.carveMargin >= 0.0)) {
+    std::fprintf(stderr, "--carve-margin = %g is out of range: valid range is [0, inf) (mean diameters)\n", o.carveMargin);
     std::exit(2);
   }
   return o;
@@ -212,7 +232,14 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   const double meanVolume = 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0;
   const double volume = o.particles * meanVolume / (1.0 - o.porosity);
   const double width = std::cbrt(volume / o.aspect);
-  m.domain.size = Vec3(width, width, o.aspect * width);
+  // The specimen's box; a cylinder carved with a margin comes from a pack that much wider on
+  // each side (not longer: its ends stay the pack's flat walled faces, as a laboratory grinds
+  // a core's ends flat; carved ends are rough and the platens crush the grains that stick
+  // out), at the same grain density (the grain count scales with the volume).
+  const Vec3 specimenSize(width, width, o.aspect * width);
+  const double margin = carve == Carve::Cylinder ? o.carveMargin * (o.rmin + o.rmax) : 0.0;
+  m.domain.size = specimenSize + Vec3(2.0 * margin, 2.0 * margin, 0.0);
+  const double packScale = m.domain.size.prod() / specimenSize.prod();
   m.material.youngsModulus = o.modulus;
   m.material.friction = o.friction;
   m.material.rollingFriction = o.rolling;
@@ -220,7 +247,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   m.solver.threads = o.threads;
   m.solver.parallelThreshold = o.threads == 1 ? 1000000000 : 0;
   PackParameters p;
-  p.initialElements = o.particles;
+  p.initialElements = static_cast<std::int64_t>(std::llround(static_cast<double>(o.particles) * packScale));
   p.minimumSize = a;
   p.maximumSize = b;
   p.randomSeed = o.seed;
@@ -241,13 +268,14 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   compacted = compactElements(m, c);
   if (carve != Carve::None) {
     // Carved before the cement as in the laboratory workflow (Documentation/Specimens.md):
-    // the cylinder inscribed in the box (diameter = width, length = height), or the
+    // the cylinder of the box specimen's width and height at the pack's centre (inscribed in
+    // it without --carve-margin; its ends are the pack's end faces either way), or the
     // Brazilian disc at the box's centre (diameter = width, thickness = width / 2, axis Z).
     SpecimenSettings shape;
     shape.shape = carve == Carve::Cylinder ? SpecimenShape::Cylinder : SpecimenShape::Disc;
     shape.axis = 2;
-    shape.diameter = full.x();
-    shape.length = carve == Carve::Cylinder ? full.z() : 0.5 * full.x();
+    shape.diameter = specimenSize.x();
+    shape.length = carve == Carve::Cylinder ? specimenSize.z() : 0.5 * specimenSize.x();
     carveSpecimen(m, shape);
   }
   CementParameters cp;
@@ -343,9 +371,10 @@ double platenShare(const Model& m, bool profile)
 /// Where and how the bonds broke (the localisation measurements of Rock.md): the share of
 /// tensile failures, of long bonds (a gap at cementing) among the broken and among all
 /// bonds, and of the outer grain layer (grains whose centre lies within one mean diameter
-/// of a side face of the specimen as cemented): its share of the broken bonds and of all
-/// bonds, and the bonded coordination of its grains against the inner grains'.
-std::string damageBreakdown(const Model& cemented, const Model& failed)
+/// of a side face of the specimen as cemented; of the cylinder's curved side when
+/// `cylinder`): its share of the broken bonds and of all bonds, and the bonded coordination of
+/// its grains against the inner grains'.
+std::string damageBreakdown(const Model& cemented, const Model& failed, bool cylinder)
 {
   const Particles& p = cemented.particles;
   std::unordered_map<std::int64_t, std::size_t> slot;
@@ -358,11 +387,19 @@ std::string damageBreakdown(const Model& cemented, const Model& failed)
     hi = hi.cwiseMax(p.position[i]);
   }
   const double d = meanParticleDiameter(cemented);
+  // A cylinder (axis Z): the outermost grain centre's distance from the axis less one diameter.
+  const double cx = 0.5 * (lo.x() + hi.x()), cy = 0.5 * (lo.y() + hi.y());
+  const auto axisDistance = [&](const Vec3& x) { return std::hypot(x.x() - cx, x.y() - cy); };
+  double outer = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    outer = std::max(outer, axisDistance(p.position[i]));
+  }
   std::vector<std::uint8_t> skin(p.size(), 0);
   std::size_t skinGrains = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3& x = p.position[i];
-    skin[i] = (x.x() - lo.x() < d || hi.x() - x.x() < d || x.y() - lo.y() < d || hi.y() - x.y() < d) ? 1 : 0;
+    skin[i] = cylinder ? (outer - axisDistance(x) < d ? 1 : 0)
+                       : ((x.x() - lo.x() < d || hi.x() - x.x() < d || x.y() - lo.y() < d || hi.y() - x.y() < d) ? 1 : 0);
     skinGrains += skin[i];
   }
   const Bonds& b = failed.bonds;
@@ -386,12 +423,13 @@ std::string damageBreakdown(const Model& cemented, const Model& failed)
     }
   }
   const auto pct = [](std::size_t a, std::size_t n) { return n ? 100.0 * static_cast<double>(a) / n : 0.0; };
-  char line[600];
+  char line[800];
   std::snprintf(line, sizeof line,
     "damage: %zu broken (%.1f %% of bonds): %.1f %% in tension; %.1f %% long bonds (long: %.1f %% of all bonds, %.1f %% of them broken, contact bonds %.1f %%); "
-    "outer grain layer (%zu grains within one diameter of a side face, coordination %.2f against %.2f inside): %.1f %% of the broken bonds, %.1f %% of all bonds, %.1f %% of its bonds broken (inside %.1f %%)",
+    "outer grain layer (%zu grains within one diameter of %s, coordination %.2f against %.2f inside): %.1f %% of the broken bonds, %.1f %% of all bonds, %.1f %% of its bonds broken (inside %.1f %%)",
     broken, pct(broken, b.size()), pct(tensile, broken), pct(longBroken, broken), pct(longAll, b.size()),
     pct(longBroken, longAll), pct(broken - longBroken, b.size() - longAll), skinGrains,
+    cylinder ? "the curved side" : "a side face",
     skinGrains ? static_cast<double>(skinEnds) / skinGrains : 0.0,
     p.size() > skinGrains ? static_cast<double>(innerEnds) / (p.size() - skinGrains) : 0.0,
     pct(skinBroken, broken), pct(skinAll, b.size()), pct(skinBroken, skinAll), pct(broken - skinBroken, b.size() - skinAll));
@@ -549,7 +587,7 @@ struct DfnReading {
   std::string text;
 };
 
-DfnReading readDfn(const Model& m)
+DfnReading readDfn(const Model& m, bool cylinder = false)
 {
   const FractureNetwork dfn = extractFractures(m, FractureParameters{});
   DfnReading r;
@@ -561,11 +599,18 @@ DfnReading readDfn(const Model& m)
     ? static_cast<double>(dfn.report.total.cracksInDiscs) / dfn.report.total.brokenBonds : 0.0;
   r.text = dfn.report.summary();
   for (const FractureDisc& d : dfn.discs) {
-    char line[260];
+    char line[360];
     const Vec3 c = d.center - m.domain.origin;
+    const Vec3& size = m.domain.size;
+    // How deep inside the side surface the centre lies (box: the nearest side face;
+    // cylinder along Z: the model box's inscribed circle, the carved diameter).
+    const double depth = cylinder
+      ? 0.5 * std::min(size.x(), size.y()) - std::hypot(c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y())
+      : std::min({ c.x(), size.x() - c.x(), c.y(), size.y() - c.y() });
     std::snprintf(line, sizeof line,
-      "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, %zu cracks, planarity %.3f, fill %.2f",
-      fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), d.crackCount(), d.planarity, d.fill);
+      "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, "
+      "%.3g m inside the side surface, %zu cracks, planarity %.3f, fill %.2f",
+      fractureSetName(d.set), d.dip, d.azimuth, d.radius, c.x(), c.y(), c.z(), depth, d.crackCount(), d.planarity, d.fill);
     r.text += line;
   }
   return r;
@@ -618,7 +663,8 @@ double minPeakStrain(const Options& o)
 /// tension; a peak at --min-peak-strain or later), the shear stage's max strain, or the
 /// test is done.
 TestResult runTest(Model m, TestMode mode, double confining, const Options& o, bool analyse,
-                   Confinement confinement = Confinement::RigidWalls, FailedSpecimen* failed = nullptr)
+                   Confinement confinement = Confinement::RigidWalls, FailedSpecimen* failed = nullptr,
+                   bool cylinder = false)
 {
   const Model start0 = m;
   TestResult r;
@@ -752,9 +798,9 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   if (analyse) {
     r.earlyBreaks = breaks.summary(std::max<std::size_t>(1, r.brokenAtPeak / 10)) + "\n  up to the peak, " +
       breaks.summary(r.brokenAtPeak);
-    r.damage = damageBreakdown(start0, m);
+    r.damage = damageBreakdown(start0, m, cylinder);
     r.nearPlatens = platenShare(m, o.profile);
-    const DfnReading dfn = readDfn(m);
+    const DfnReading dfn = readDfn(m, cylinder);
     r.discs = dfn.discs;
     r.largestDisc = dfn.largestDisc;
     r.discShare = dfn.discShare;
@@ -1092,31 +1138,68 @@ int main(int argc, char** argv)
               cemented.summary().c_str(), secondsSince(start));
   std::fflush(stdout);
 
-  double ucs = 0.0;
-  if (wants(o, "ucs")) {
-    FailedSpecimen failed;
-    const TestResult u = runTest(m, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed);
-    if (!o.dump.empty()) {
-      dumpSpecimen(failed, o.dump + "/ucs_failed.csv"); // the frame at 70 % of the peak
+  // The cylinder carved from the same pack (or from a larger one, --carve-margin), built once
+  // for the unconfined, tension and envelope tests that ask for it.
+  const bool onBox = o.specimen != "cylinder";
+  const bool onCylinder = o.specimen != "box";
+  Model carved;
+  CementReport carvedCement;
+  bool haveCylinder = false;
+  const auto cylinderSpecimen = [&]() -> const Model& {
+    if (!haveCylinder) {
+      CompactReport p2;
+      const auto built = std::chrono::steady_clock::now();
+      carved = buildSpecimen(o, carvedCement, p2, Carve::Cylinder);
+      haveCylinder = true;
+      std::printf("cylinder: %zu particles carved from a pack of %zu grains (margin %g mean diameters), diameter %.4g m, "
+                  "length %.4g m, %.1f mean diameters across; %s; %s (%.1f s)\n",
+                  carved.particles.size(), p2.particles, o.carveMargin, width, m.domain.size.z(),
+                  width / meanParticleDiameter(carved), p2.summary().c_str(), carvedCement.summary().c_str(),
+                  secondsSince(built));
+      std::fflush(stdout);
     }
-    ucs = u.peak;
-    std::printf("UCS %.4g Pa at strain %.4g; E %.4g Pa; nu %.3f; broken %zu (%.1f %% of bonds); "
+    return carved;
+  };
+
+  // The unconfined test on the box (label "") or the cylinder ("cylinder "): its figures, the
+  // localisation measurements and the DFN at 70 % of the peak, and --dump's frame.
+  const auto unconfined = [&](const Model& spec, bool cylinder, std::size_t bonds) {
+    const char* label = cylinder ? "cylinder " : "";
+    FailedSpecimen failed;
+    const TestResult u = runTest(spec, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed, cylinder);
+    if (!o.dump.empty()) {
+      dumpSpecimen(failed, o.dump + (cylinder ? "/ucs_failed_cylinder.csv" : "/ucs_failed.csv")); // the frame at 70 % of the peak
+      printFrames(cylinder ? "cylinder ucs" : "ucs", failed);
+    }
+    std::printf("%sUCS %.4g Pa at strain %.4g; E %.4g Pa; nu %.3f; broken %zu (%.1f %% of bonds); "
                 "70 %% of peak at strain %.4g; broken within 2 diameters of a platen: %.1f %% (%lld steps, %.1f s)\n",
-                u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / cemented.bonds, u.strainAt70,
+                label, u.peak, u.peakStrain, u.E, u.nu, u.broken, 100.0 * u.broken / bonds, u.strainAt70,
                 100.0 * u.nearPlatens, static_cast<long long>(u.steps), u.seconds);
     std::printf("  rate: strain rate %.6g 1/s = %.4g x Suggested Strain Rate %.6g 1/s (timestep %.4g s); "
                 "inertial number at the peak %.4g; mean unbalanced force ratio up to the peak %.4g\n",
                 u.strainRate, u.suggested > 0.0 ? u.strainRate / u.suggested : 0.0, u.suggested, u.timestep,
                 u.inertialAtPeak, u.ufrBeforePeak);
     std::printf("  broken at the peak: %zu (%.1f %% of bonds); softening then (intact, damage > 0): %zu (%.1f %%)\n  %s\n  %s\n",
-                u.brokenAtPeak, 100.0 * u.brokenAtPeak / cemented.bonds, u.softeningAtPeak,
-                100.0 * u.softeningAtPeak / cemented.bonds, u.damage.c_str(), u.earlyBreaks.c_str());
+                u.brokenAtPeak, 100.0 * u.brokenAtPeak / bonds, u.softeningAtPeak,
+                100.0 * u.softeningAtPeak / bonds, u.damage.c_str(), u.earlyBreaks.c_str());
     if (!u.peaked) {
       std::printf("  no peak: the stress did not fall to 70 %% of its largest value within Max Strain %g\n", o.maxStrain);
     }
     std::printf("  DFN: %zu discs, largest radius %.4g m (%.0f %% of the width), %.1f %% of broken bonds in discs\n  %s\n",
                 u.discs, u.largestDisc, 100.0 * u.largestDisc / width, 100.0 * u.discShare, u.dfn.c_str());
     std::fflush(stdout);
+    return u.peak;
+  };
+  double ucs = 0.0;          // the box's (the triaxial series' reference)
+  double cylinderUcs = 0.0;
+  if (wants(o, "ucs")) {
+    if (onBox) {
+      ucs = unconfined(m, false, cemented.bonds);
+    }
+    if (onCylinder) {
+      const Model& spec = cylinderSpecimen();
+      cylinderUcs = unconfined(spec, true, carvedCement.bonds);
+    }
   }
   if (wants(o, "rates")) {
     // The strain-rate sweep of Documentation/SpeedAccuracy.md: one unconfined test per
@@ -1164,14 +1247,24 @@ int main(int argc, char** argv)
   }
   double tensile = 0.0;
   if (wants(o, "tension")) {
-    const TestResult t = runTest(m, TestMode::Tension, 0.0, o, false);
-    tensile = t.peak;
-    std::printf("direct tension %.4g Pa at strain %.4g; broken %zu (%lld steps, %.1f s)\n", t.peak,
-                t.peakStrain, t.broken, static_cast<long long>(t.steps), t.seconds);
-    if (ucs > 0.0) {
-      std::printf("UCS / sigma_t = %.2f\n", ucs / tensile);
+    // Direct tension on a twin of each unconfined specimen (the same specimen, fresh).
+    for (const bool cylinder : { false, true }) {
+      if (!(cylinder ? onCylinder : onBox)) {
+        continue;
+      }
+      const TestResult t = runTest(cylinder ? cylinderSpecimen() : m, TestMode::Tension, 0.0, o, false);
+      const char* label = cylinder ? "cylinder " : "";
+      std::printf("%sdirect tension %.4g Pa at strain %.4g; broken %zu (%lld steps, %.1f s)\n", label, t.peak,
+                  t.peakStrain, t.broken, static_cast<long long>(t.steps), t.seconds);
+      const double compression = cylinder ? cylinderUcs : ucs;
+      if (compression > 0.0) {
+        std::printf("%sUCS / sigma_t = %.2f\n", label, compression / t.peak);
+      }
+      if (!cylinder) {
+        tensile = t.peak;
+      }
+      std::fflush(stdout);
     }
-    std::fflush(stdout);
   }
   if (wants(o, "brazilian")) {
     // The Brazilian disc carved from the same pack (the same compaction, the same cement
@@ -1205,14 +1298,7 @@ int main(int argc, char** argv)
         continue;
       }
       const bool cylinder = std::string(kind) == "cylinder";
-      CementReport c2;
-      CompactReport p2;
-      const auto built = std::chrono::steady_clock::now();
-      const Model spec = cylinder ? buildSpecimen(o, c2, p2, Carve::Cylinder) : m;
-      if (cylinder) {
-        std::printf("cylinder: %zu particles carved from the same pack, diameter %.4g m, length %.4g m; %s (%.1f s)\n",
-                    spec.particles.size(), width, m.domain.size.z(), c2.summary().c_str(), secondsSince(built));
-      }
+      const Model& spec = cylinder ? cylinderSpecimen() : m;
       std::vector<double> s3, s1;
       for (std::size_t k = 0; k < o.sigma3.size(); ++k) {
         FailedSpecimen failed;
