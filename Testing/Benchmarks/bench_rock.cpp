@@ -46,6 +46,8 @@
 //     that the stress oscillation at the start of an undamped test does not end it.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
 //     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
+//   --contact-law hertz|linear: the grains' contact law (default hertz, Hertz-Mindlin), set
+//     before Compact Elements so that the pack is compacted, cemented and tested with it.
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -124,6 +126,7 @@ struct Options {
   int threads = 0;
   bool profile = false;         // print the broken-bond profile along the axis
   bool lengthStiffness = false; // experiment: kn = Bond Modulus / (bond length at cementing)
+  ContactLaw contactLaw = ContactLaw::HertzMindlin; // --contact-law hertz|linear: the grains' law from the pack on
 };
 
 Options parse(int argc, char** argv)
@@ -177,9 +180,16 @@ Options parse(int argc, char** argv)
       o.probeToMaxStrain = true;
     } else if (a == "--length-stiffness") {
       o.lengthStiffness = true;
+    } else if (a == "--contact-law" && i + 1 < argc) {
+      const std::string law = argv[++i];
+      if (law != "hertz" && law != "linear") {
+        std::fprintf(stderr, "--contact-law = %s is not a contact law: use hertz or linear\n", law.c_str());
+        std::exit(2);
+      }
+      o.contactLaw = law == "linear" ? ContactLaw::Linear : ContactLaw::HertzMindlin;
     } else {
       std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
-                           " [--seed S] [--threads T] [--profile]", argv[0]);
+                           " [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
       }
@@ -218,6 +228,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   m.material.rollingFriction = o.rolling;
   m.gravity.setZero();
   m.solver.threads = o.threads;
+  m.solver.contactLaw = o.contactLaw; // compacted, cemented and tested with the same law
   m.solver.parallelThreshold = o.threads == 1 ? 1000000000 : 0;
   PackParameters p;
   p.initialElements = o.particles;
