@@ -23,6 +23,10 @@ writes, under OUT:
                                      against Servo Alpha (triaxial); unstable, detected, servo
                                      oscillating, drifting runs, the defaults marked;
 CPU threads: the same test on 1 and 2 threads, its time and whether the UCS agrees bit for bit.
+Contact law (contact_law): the same rock built and tested with Hertz-Mindlin and with linear
+contacts (bench --contact-law, set before Compact Elements), the linear one at the same strain
+per step and at the same strain rate: porosity, bonds, UCS, E, nu, sigma_t, broken at the peak,
+the DFN, steps, particle-steps and run time.
 
 --quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, into
 OUT (a scratch folder); asserts that the charts and tables were written and every number in
@@ -49,7 +53,7 @@ plt = pyplot()
 # The specimen: the "stiff bonds" rock of Documentation/Rock.md (E = Bond Modulus 1e10 Pa,
 # Tensile 1 MPa, Cohesion 4 MPa, Moment Contribution 0.5, Bond Range 1.4).
 ROCK = ["--modulus", "1e10", "--tensile", "1e6", "--cohesion", "4e6", "--moment-contribution", "0.5",
-        "--range", "1.4", "--max-strain", "0.03"]
+        "--range", "1.4", "--max-strain", "0.03"]  # (contact_law_section replaces the last two)
 # The strain-rate sweep: (name, factors, inertial target of the suggestion the factors
 # multiply, or None for the engine's rule). The full sweep was run at the rule's first
 # target, 1e-4 (bench --inertial-target 1e-4): the table and chart give each rate against
@@ -66,6 +70,9 @@ QUICK = {"particles": 300, "rate_runs": [("rates", [256, 128, 64], None)], "modu
          "threads_factor": 256,
          "stability": {"rate_factor": 256, "ratios": [1], "safeties": [0.3, 3], "dampings": [0.7], "alphas": [0.5, 1],
                        "servo_safety": 0.3, "sigma3": 1e6, "max_steps": 20000}}
+# The contact-law comparison: setting C of Documentation/Rock.md on 2,000 grains (run A there).
+FULL["contact_law"] = {"particles": 2000, "strain_per_step": 1e-7, "max_strain": 0.004, "tests": "ucs,tension"}
+QUICK["contact_law"] = {"particles": 300, "strain_per_step": 4e-7, "max_strain": 0.004, "tests": "ucs"}
 FULL["bonded_safeties"] = [0.05, 0.1, 0.2, 0.3, 0.5]
 FULL["bonded_factor"] = 16
 QUICK["bonded_safeties"] = [0.3, 0.5]
@@ -462,6 +469,103 @@ def timestep_bonded_section(bench, cfg, work, out):
     return text, rows, [image]
 
 
+LAW_PATTERNS = {
+    "porosity": r"Compact Elements: porosity \S+ -> (\S+) ",
+    "locked_in": r"locked-in isotropic stress (\S+) Pa",
+    "compact_steps": r"\d+ stages, (\d+) steps\.",
+    "bonds": r"installed (\d+) bonds",
+    "coordination": r"bonded coordination (\S+) ",
+    "ucs": r"^UCS (\S+) Pa at strain",
+    "peak_strain": r"^UCS \S+ Pa at strain (\S+);",
+    "E": r"^UCS .*; E (\S+) Pa;",
+    "nu": r"^UCS .*; nu (\S+);",
+    "ucs_steps": r"^UCS .*\((\d+) steps, \S+ s\)",
+    "ucs_seconds": r"^UCS .*\(\d+ steps, (\S+) s\)",
+    "rate": r"rate: strain rate (\S+) 1/s",
+    "timestep": r"\(timestep (\S+) s\)",
+    "broken_peak": r"broken at the peak: \d+ \((\S+) % of bonds\)",
+    "near_platens": r"broken within 2 diameters of a platen: (\S+) %",
+    "discs": r"^  DFN: (\d+) discs",
+    "disc_share": r"^  DFN: .*, (\S+) % of broken bonds in discs",
+    "tension": r"^direct tension (\S+) Pa",
+    "tension_steps": r"^direct tension .*\((\d+) steps, \S+ s\)",
+    "tension_seconds": r"^direct tension .*\(\d+ steps, (\S+) s\)",
+    "total": r"^total (\S+) s",
+}
+
+
+def parse_law(lines):
+    """The figures of one --tests ucs[,tension] bench run (absent ones: nan)."""
+    row = {}
+    for key, pattern in LAW_PATTERNS.items():
+        row[key] = math.nan
+        for line in lines:
+            m = re.search(pattern, line)
+            if m:
+                row[key] = float(m.group(1))
+                break
+    if math.isnan(row["ucs"]):
+        sys.exit("no UCS line in the bench output")
+    return [row]
+
+
+def law_args(cfg, law, strain_per_step):
+    c = cfg["contact_law"]
+    return ["--particles", str(c["particles"]), "--threads", "1", "--tests", c["tests"], "--contact-law", law,
+            "--strain-per-step", "%.4g" % strain_per_step] + ROCK[:-2] + ["--max-strain", "%g" % c["max_strain"]]
+
+
+def contact_law_section(bench, cfg, work, out):
+    """Hertz-Mindlin against linear contacts on the same rock, each specimen built with its law."""
+    c = cfg["contact_law"]
+    runs, notes = [], []
+    hertz, note = run(bench, law_args(cfg, "hertz", c["strain_per_step"]), work, "contact_law_hertz", cfg is FULL,
+                      parse_law)
+    runs.append(("Hertz-Mindlin", "%.4g" % c["strain_per_step"], hertz[0]))
+    notes.append(note)
+    linear, note = run(bench, law_args(cfg, "linear", c["strain_per_step"]), work, "contact_law_linear", cfg is FULL,
+                       parse_law)
+    runs.append(("linear, same strain per step", "%.4g" % c["strain_per_step"], linear[0]))
+    notes.append(note)
+    # The same strain rate: the strain per step scaled by the linear specimen's timestep.
+    same = c["strain_per_step"] * linear[0]["timestep"] / hertz[0]["timestep"]
+    linear_rate, note = run(bench, law_args(cfg, "linear", same), work, "contact_law_linear_same_rate", cfg is FULL,
+                            parse_law)
+    runs.append(("linear, same strain rate", "%.4g" % same, linear_rate[0]))
+    notes.append(note)
+    ref = hertz[0]
+    n = c["particles"]
+
+    def steps(r):
+        return sum(v for v in (r["compact_steps"], r["ucs_steps"], r["tension_steps"]) if math.isfinite(v))
+
+    def fmt(v, f):
+        return f % v if math.isfinite(v) else "-"
+    rows = []
+    for name, sps, r in runs:
+        rows.append([name, sps, fmt(r["timestep"], "%.4g"), fmt(r["rate"], "%.3g"), fmt(r["porosity"], "%.3f"),
+                     fmt(r["locked_in"] / 1e3, "%.1f kPa"), "%d (%.2f)" % (r["bonds"], r["coordination"]),
+                     "%.3g MPa (%+.1f %%)" % (r["ucs"] / 1e6, pct(r["ucs"], ref["ucs"])),
+                     "%.3g GPa (%+.1f %%)" % (r["E"] / 1e9, pct(r["E"], ref["E"])), fmt(r["nu"], "%.3f"),
+                     fmt(r["tension"] / 1e6, "%.3g MPa") + (" (%+.1f %%)" % pct(r["tension"], ref["tension"])
+                                                             if math.isfinite(r["tension"]) else ""),
+                     fmt(r["ucs"] / r["tension"], "%.2f"), fmt(r["broken_peak"], "%.1f %%"),
+                     fmt(r["near_platens"], "%.1f %%"),
+                     "%d discs, %.1f %% of broken bonds" % (r["discs"], r["disc_share"]),
+                     "%d / %d / %d" % (r["compact_steps"], r["ucs_steps"], r["tension_steps"] if math.isfinite(
+                         r["tension_steps"]) else 0),
+                     "%.3g" % (n * steps(r)), fmt(r["total"], "%.1f")])
+        r["particle_steps"] = float(n * steps(r))
+    body = table(["law", "strain per step", "timestep (s)", "strain rate (1/s)", "porosity", "locked-in",
+                  "bonds (coordination)", "UCS (vs Hertz)", "E (vs Hertz)", "nu", "sigma_t (vs Hertz)",
+                  "UCS / sigma_t", "broken at the peak", "broken near the platens", "DFN at 70 % of the peak",
+                  "steps: compact / UCS / tension", "particle-steps", "wall time (s)"], rows)
+    text = "Command: `rockdem_bench_rock %s` with `--contact-law` hertz and linear, and linear again at the " \
+        "strain per step that gives Hertz's strain rate (%s; %s).\n\n%s" % (
+            " ".join(law_args(cfg, "LAW", c["strain_per_step"])), machine(), "; ".join(notes), body)
+    return text, [{k: v for k, v in r.items() if math.isfinite(v)} for _, _, r in runs], []
+
+
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
     page = ""
@@ -487,7 +591,7 @@ def main():
     parser.add_argument("--out", default=os.path.join(HERE, "..", "Documentation"))
     parser.add_argument("--work", default=None)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded",
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law",
                         help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
@@ -496,7 +600,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     sections, numbers, images = {}, [], []
     makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section,
-              "stability": stability_section, "timestep_bonded": timestep_bonded_section}
+              "stability": stability_section, "timestep_bonded": timestep_bonded_section,
+              "contact_law": contact_law_section}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text

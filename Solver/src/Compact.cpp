@@ -36,6 +36,13 @@ constexpr std::int64_t kFinalSteps = 20000;
 constexpr std::int64_t kHoldSteps = 1000;
 /// Steps between equilibrium checks.
 constexpr std::int64_t kCheckSteps = 50;
+/// Linear springs: a relaxation counts as equilibrium only once the mean stress, too, has
+/// changed by less than this share over kCheckSteps. At the default ceiling a linear pack
+/// overlaps 1e-5 to 1e-4 of the radius and sits at the jamming point itself, where it
+/// creeps: its stress fell e-fold every 1,000-3,000 steps at an unbalanced force ratio of
+/// 0.007-0.016, below 0.01 now and then (200 grains), and a creeping pack read as relaxed at
+/// 140 x the ceiling, then had no stress at all 1e-5 smaller in radius.
+constexpr double kSteadyStress = 0.01;
 /// Steps between quenches.
 constexpr std::int64_t kQuenchSteps = 5;
 /// FIRE's mixing factor (its alpha at the start, kept fixed).
@@ -43,6 +50,17 @@ constexpr double kFireMixing = 0.1;
 /// Timestep Safety while compacting: the overlaps stay below a few per cent of the radius,
 /// where a Hertz contact is far softer than the Rayleigh limit assumes.
 constexpr double kCompactTimestepSafety = 0.5;
+/// The same with linear springs: their critical timestep (Simulation.cpp, contactTimestep)
+/// is already the bound for a full coordination of wall-stiff springs, sqrt(m / (12 kn_wall))
+/// = 1 / omega_max at most, half of the explicit scheme's limit 2 / omega_max, and the smaller
+/// rotational bound it takes does not apply to a frictionless pack with its spins zeroed. At
+/// 0.5, a linear pack relaxed 4-8 x more slowly per step than a Hertz one (omega dt 0.1
+/// against 0.4-0.9 at the same overlaps) and ran out of steps before its stress had settled.
+constexpr double kCompactLinearTimestepSafety = 1.0;
+/// The exponent n of the relaxed mean stress of a pack compressed past jamming, sigma ~
+/// (s - sJ)^n in the radius factor s: its contact forces grow as overlap^n (Hertz 3/2,
+/// linear springs 1; PHYSICS.md section 1, Documentation/Physics-Contacts.md).
+double stressExponent(ContactLaw law) { return law == ContactLaw::Linear ? 1.0 : 1.5; }
 /// Halving the timestep after an instability stops below this safety (the error then stands).
 constexpr double kSmallestTimestepSafety = 0.01;
 /// Shrinking to the ceiling aims at this fraction of it, and accepts [kLowestShare, 1] of it.
@@ -142,9 +160,13 @@ struct Relaxed {
 /// Cycles the frictionless model until it is in equilibrium: the unbalanced force ratio
 /// below `ratio`, or the mean stress below `stressFloor` (a pack looser than jamming
 /// relaxes to no stress at all, where the ratio means nothing), or `maxSteps` steps.
+/// With linear springs the ratio must be met with the mean stress steady, within
+/// kSteadyStress of its value kCheckSteps earlier (see kSteadyStress).
 Relaxed relax(Model& model, double ratio, double stressFloor, std::int64_t maxSteps)
 {
   Relaxed out;
+  const bool steady = model.solver.contactLaw == ContactLaw::Linear;
+  double previousStress = -1.0;
   model.clock.step = 0;
   model.clock.time = 0.0;
   model.contacts.clear();
@@ -176,7 +198,10 @@ Relaxed relax(Model& model, double ratio, double stressFloor, std::int64_t maxSt
     out.steps += kCheckSteps;
     out.unbalancedForceRatio = sim->diagnostics().unbalancedForceRatio;
     out.meanStress = sim->measurements().meanStress;
-    if (out.unbalancedForceRatio < ratio || out.meanStress < stressFloor) {
+    const bool settled =
+      !steady || std::abs(out.meanStress - previousStress) <= kSteadyStress * std::abs(out.meanStress);
+    previousStress = out.meanStress;
+    if ((out.unbalancedForceRatio < ratio && settled) || out.meanStress < stressFloor) {
       out.equilibrium = true;
       break;
     }
@@ -307,11 +332,13 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
   model.material.rollingFriction = 0.0;
   model.gravity.setZero();
   model.solver.settlingDamping = kCompactDamping;
-  model.solver.timestepSafety = kCompactTimestepSafety;
+  model.solver.timestepSafety =
+    model.solver.contactLaw == ContactLaw::Linear ? kCompactLinearTimestepSafety : kCompactTimestepSafety;
   model.solver.requestedTimestep = 0.0;
   model.test = LoadTestState();
   resetWalls(model);
 
+  const ContactLaw law = model.solver.contactLaw;
   const double dimension = model.domain.dimension();
   const std::vector<double> reference = model.particles.radius;
   const double startFraction = boxSolidFraction(model);
@@ -344,8 +371,16 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
         growth = std::max(kMinStageGrowth, 0.5 * growth);
       }
     }
+    // A Hertz pack past the working limit is held for kHoldSteps only (it is jammed; the
+    // shrinking relaxes it). A linear one is relaxed in full: at equal overlaps its springs
+    // carry 25-60 x the force of a Hertz contact at 0.3-1.5 % of the radius (kn = pi r E / 2),
+    // so the residue of an unrelaxed growth stage passes the working limit long before the
+    // pack jams; held 1,000 steps it still read 265 x the ceiling, and the shrinking that
+    // started from that reading never came back up to jamming (200-2,000 grains ended at
+    // porosity 0.41-0.46 with almost no stress, or a grain pushed past a wall).
     const bool overcompressed = state.meanStress > kWorkingLimit * ceiling;
-    state = relax(model, params.equilibriumRatio, floor, overcompressed ? kHoldSteps : kFinalSteps);
+    const bool hold = overcompressed && law != ContactLaw::Linear;
+    state = relax(model, params.equilibriumRatio, floor, hold ? kHoldSteps : kFinalSteps);
     report.steps += state.steps;
     if (state.meanStress > ceiling || scale >= targetScale) {
       break;
@@ -353,27 +388,51 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
     growth = std::max(kMinStageGrowth, kLateGrowthShare * growth);
   }
 
-  // 3. Jammed above the ceiling: shrink the radii back to it. A Hertz pack compressed past
-  // jamming carries sigma ~ (s - sJ)^(3/2); the mean overlap strain estimates s - sJ, and
-  // two relaxed points then give the secant in sigma^(2/3).
+  // 3. Jammed above the ceiling: shrink the radii back to it. A pack compressed past
+  // jamming carries sigma ~ (s - sJ)^n, n = 3/2 for Hertz contacts and 1 for linear springs
+  // (stressExponent); the mean overlap strain estimates s - sJ, and two relaxed points then
+  // give the secant in sigma^(1/n). The factors tried stay inside the bracket the relaxed
+  // points give: below the smallest one found above the ceiling, above the largest one found
+  // below the window (bisection where the secant would leave it).
   if (state.meanStress > ceiling) {
     report.jammed = true;
+    const double power = 1.0 / stressExponent(law);
     double sHigh = scale;
-    double yHigh = std::pow(state.meanStress, 2.0 / 3.0);
+    double yHigh = std::pow(state.meanStress, power);
     double jammingScale = scale * (1.0 - overlapStatistics(model).meanStrain);
-    const double aim = std::pow(kAimShare * ceiling, 2.0 / 3.0);
+    double above = scale; // smallest factor found above the ceiling
+    double below = 0.0;   // largest factor found below kLowestShare x the ceiling (0: none yet)
+    const double aim = std::pow(kAimShare * ceiling, power);
+    // A linear pack that creeps below the window is a point below it (bisection needs no
+    // more): its relaxation stops there instead of creeping on to the floor (up to 20,000
+    // steps).
+    const double shrinkFloor = law == ContactLaw::Linear ? kLowestShare * ceiling : floor;
+    bool bisect = false;
     for (int k = 0; k < kShrinkIterations; ++k) {
-      // sigma^(2/3) is linear in s between jamming (0) and (sHigh, yHigh).
-      const double next = jammingScale + (sHigh - jammingScale) * aim / yHigh;
+      // sigma^(1/n) is linear in s between jamming (0) and (sHigh, yHigh).
+      double next = jammingScale + (sHigh - jammingScale) * aim / yHigh;
+      if (bisect || !(next < above && next > below)) {
+        next = below > 0.0 ? 0.5 * (below + above) : 0.5 * (std::max(jammingScale, 0.0) + above);
+      }
       scale = next;
       setScale(model, reference, scale);
-      state = relax(model, params.equilibriumRatio, floor, kFinalSteps);
+      state = relax(model, params.equilibriumRatio, shrinkFloor, kFinalSteps);
       report.steps += state.steps;
       ++report.stages;
       if (state.meanStress <= ceiling && state.meanStress >= kLowestShare * ceiling) {
         break;
       }
-      const double y = std::pow(std::max(state.meanStress, 0.0), 2.0 / 3.0);
+      if (state.meanStress > ceiling) {
+        above = std::min(above, scale);
+      } else {
+        below = std::max(below, scale);
+      }
+      // A relaxation that stopped at the stress floor found no stress (relax): the pack is
+      // below jamming there, whatever stress was left when it stopped. (Read as a stress,
+      // it made the secant extrapolate up, 20 x the bracket: the radii grew past the box,
+      // and a grain's centre lay beyond a wall before the first step, InstabilityError.)
+      const double y =
+        state.meanStress < shrinkFloor ? 0.0 : std::pow(std::max(state.meanStress, 0.0), power);
       if (state.meanStress > ceiling || y > 0.0) {
         // A new point of the line through it and the previous one.
         const double slope = (yHigh - y) / (sHigh - scale);
@@ -382,9 +441,13 @@ CompactReport compactElements(Model& model, const CompactParameters& params)
         }
         sHigh = scale;
         yHigh = y;
+        bisect = false;
       } else {
-        // Below jamming (no stress): jamming lies between here and the last point.
+        // Below jamming (no stress): jamming lies between here and the last point. The
+        // secant from there would creep up from this point in steps of aim / yHigh of the
+        // bracket (1e-3 for a linear pack 1,000 x past its ceiling): bisect instead.
         jammingScale = scale;
+        bisect = true;
       }
     }
   }

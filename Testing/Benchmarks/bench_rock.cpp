@@ -56,6 +56,8 @@
 //     face (holding proportionally more grains; the same height: the ends stay the pack's flat
 //     walled faces, as ground ends), so that the cylinder's curved side touches no wall;
 //     0: the cylinder inscribed in the box specimen's own pack, as before.
+//   --contact-law hertz|linear: the grains' contact law (default hertz, Hertz-Mindlin), set
+//     before Compact Elements so that the pack is compacted, cemented and tested with it.
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -135,6 +137,7 @@ struct Options {
   int threads = 0;
   bool profile = false;         // print the broken-bond profile along the axis
   bool lengthStiffness = false; // experiment: kn = Bond Modulus / (bond length at cementing)
+  ContactLaw contactLaw = ContactLaw::HertzMindlin; // --contact-law hertz|linear: the grains' law from the pack on
 };
 
 Options parse(int argc, char** argv)
@@ -189,9 +192,16 @@ Options parse(int argc, char** argv)
       o.probeToMaxStrain = true;
     } else if (a == "--length-stiffness") {
       o.lengthStiffness = true;
+    } else if (a == "--contact-law" && i + 1 < argc) {
+      const std::string law = argv[++i];
+      if (law != "hertz" && law != "linear") {
+        std::fprintf(stderr, "--contact-law = %s is not a contact law: use hertz or linear\n", law.c_str());
+        std::exit(2);
+      }
+      o.contactLaw = law == "linear" ? ContactLaw::Linear : ContactLaw::HertzMindlin;
     } else {
       std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
-                           " [--specimen box|cylinder|both] [--seed S] [--threads T] [--profile]", argv[0]);
+                           " [--specimen box|cylinder|both] [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
       }
@@ -245,6 +255,7 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   m.material.rollingFriction = o.rolling;
   m.gravity.setZero();
   m.solver.threads = o.threads;
+  m.solver.contactLaw = o.contactLaw; // compacted, cemented and tested with the same law
   m.solver.parallelThreshold = o.threads == 1 ? 1000000000 : 0;
   PackParameters p;
   p.initialElements = static_cast<std::int64_t>(std::llround(static_cast<double>(o.particles) * packScale));
