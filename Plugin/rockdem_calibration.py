@@ -9,16 +9,20 @@ recipe; every iteration only re-cements and re-tests it):
    log Bond Stiffness Ratio; both from the elastic part of an unconfined compression
    (bonds made too strong to break);
 2. strength: UCS by the secant method on log UCS against log Tensile Strength (the bond
-   strength scale), and UCS / sigma_t by bracketed secant on the ratio Cohesion / Tensile
-   Strength; sigma_t from the target's tensile test type (TENSILE_TESTS: 'direct' now;
-   a Brazilian test plugs in there as another entry);
+   strength scale), and UCS / sigma_t by bracketed secant on the Moment Contribution
+   (beta, [0, 1]: the ratio falls as beta rises, Rock.md), then, once beta is at a bound
+   that cannot get closer, on the ratio Cohesion / Tensile Strength (RATIO_LEVERS);
+   sigma_t from the target's tensile test type (TENSILE_TESTS: 'direct' now; a Brazilian
+   test plugs in there as another entry);
 3. envelope (when the target has a friction angle and a confining range): the friction
-   angle of the Mohr-Coulomb fit of triaxial peaks by bracketed secant on the bond
-   Friction Angle;
+   angle of the Mohr-Coulomb fit of triaxial peaks by bracketed secant on the Bond Range
+   ([1, 2]: the friction angle rises with the bonded coordination, Rock.md; a new Bond
+   Range re-cements the same compacted pack) (ENVELOPE_LEVERS; the bond Friction Angle,
+   measured flat, is no longer a lever);
 
 then again from 1 until every target is within its tolerance, a target is found
-unreachable (the bracket's ends both miss it on the same side), or the test budget is
-spent. What it reaches is reported with its residual, never clamped into success.
+unreachable (every lever of its chain is at a bracket end that misses it on the same
+side), or the test budget is spent. What it reaches is reported with its residual, never clamped into success.
 
 Documentation/Calibration.md documents the method, the parameter file and the measured
 runs. The pure functions here (validation, root finding, the parameter file) import no
@@ -44,7 +48,21 @@ TENSILE_TESTS = ("direct",)
 
 #: The bracket of each bounded variable (Cement.md ranges, narrowed to what is useful).
 BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 4.0),
+            "MomentContribution": (0.0, 1.0), "BondRange": (1.0, 2.0),
             "FrictionAngle": (0.0, 60.0)}
+
+#: The levers of a property, in the order they are used: (variable, slope guess dy/dx,
+#: max step). A LeverChain solves the property on the first lever; when that lever is at
+#: a bound of its bracket that cannot get closer, the next one takes over from the same
+#: measurement; the property is unreachable when every lever is spent.
+#: UCS / sigma_t: Moment Contribution first (Rock.md, stiff bonds: 5.67 at beta 1, 10.5-11
+#: at 0.5, 14 at 0, with Cohesion = 4 x Tensile), then Cohesion / Tensile (flat at beta 1
+#: in the runs of Calibration.md; lowering it lowers the ratio, Rock.md settings B, D).
+RATIO_LEVERS = (("MomentContribution", -8.0, 0.5), ("CohesionRatio", 1.5, 1.0))
+#: friction angle: Bond Range (Rock.md: 41.7 / 48.9 / 54.0 / 57.8 deg at 1.0 / 1.2 / 1.4 /
+#: 1.6, about 27 deg per unit). The bond Friction Angle moved nothing (44-45 deg at 0-60
+#: deg, Calibration.md) and is left at its start value.
+ENVELOPE_LEVERS = (("BondRange", 25.0, 0.4),)
 
 RECIPE_DEFAULTS = {
     "elements": 600,            # Initial Elements (count)
@@ -163,6 +181,8 @@ def validate_recipe(recipe):
         _positive(r, key, "see Calibration.md")
     if not 1.0 <= r["bond_range"] <= 2.0:
         raise _bad("bond_range", r["bond_range"], "valid range [1, 2]")
+    if not 0.0 <= r["moment_contribution"] <= 1.0:
+        raise _bad("moment_contribution", r["moment_contribution"], "valid range [0, 1]")
     return r
 
 
@@ -250,6 +270,46 @@ class SecantSolver:
         if x == x0 and (x0 in (self.lo, self.hi)):
             self.unreachable = True
         return x
+
+
+class LeverChain:
+    """One property solved on a chain of levers (RATIO_LEVERS, ENVELOPE_LEVERS), each by
+    a bracketed SecantSolver on its BRACKETS range, one measurement at a time.
+
+    ``update(y)`` gives the property measured with the current parameters p (a dict the
+    chain moves in place): the active lever's solver takes the point and sets its next
+    value; when that lever is spent (its solver says unreachable: at a bound, the goal
+    beyond it) the next lever starts from the same measurement, without another test.
+    Returns True when a parameter was moved, False when every lever is spent (the
+    property is unreachable). ``spent`` (a set shared between rounds) keeps the spent
+    levers' names so that a later round starts from the first lever still free."""
+
+    def __init__(self, levers, goal, p, spent):
+        self.levers = [lv for lv in levers if lv[0] not in spent]
+        self.goal = float(goal)
+        self.p = p
+        self.spent = spent
+        self.solver = None
+
+    @property
+    def lever(self):
+        return self.levers[0][0] if self.levers else None
+
+    def update(self, y):
+        while self.levers:
+            name, slope, step = self.levers[0]
+            if self.solver is None:
+                lo, hi = BRACKETS[name]
+                self.solver = SecantSolver(self.goal, lo, hi, slope_guess=slope, max_step=step)
+            self.solver.add(self.p[name], y)
+            x = self.solver.next_x()
+            if not self.solver.unreachable:
+                self.p[name] = x
+                return True
+            self.spent.add(name)
+            self.levers.pop(0)
+            self.solver = None
+        return False
 
 
 def solve(function, goal, x0, tolerance, max_evaluations, **kwargs):
@@ -401,12 +461,13 @@ def _errors(target, measured):
 def cement_properties(p, recipe):
     """DEM Cement properties of the calibration variables p (BondModulus,
     BondStiffnessRatio, TensileStrength, CohesionRatio = Cohesion / Tensile Strength,
-    FrictionAngle) and the recipe's fixed ones."""
+    FrictionAngle, BondRange, MomentContribution; the last two default to the recipe's
+    bond_range and moment_contribution) and the recipe's fixed ones."""
     return {"BondModulus": p["BondModulus"], "BondStiffnessRatio": p["BondStiffnessRatio"],
             "TensileStrength": p["TensileStrength"], "Cohesion": p["TensileStrength"] * p["CohesionRatio"],
-            "FrictionAngle": p["FrictionAngle"], "BondRange": recipe["bond_range"],
-            "MomentContribution": recipe["moment_contribution"], "StrengthScatter": recipe["strength_scatter"],
-            "RandomSeed": recipe["seed"]}
+            "FrictionAngle": p["FrictionAngle"], "BondRange": p.get("BondRange", recipe["bond_range"]),
+            "MomentContribution": p.get("MomentContribution", recipe["moment_contribution"]),
+            "StrengthScatter": recipe["strength_scatter"], "RandomSeed": recipe["seed"]}
 
 
 class _Bench:
@@ -629,12 +690,16 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     st_t = target.get("tensile_strength")
     # Start: Bond Modulus = grain modulus = target E; default stiffness ratio; strengths at
     # a tenth of the UCS (compact bonded packs give UCS of several times the bond tensile
-    # strength: Rock.md); Cohesion = 2 x Tensile; bond friction 30 deg.
+    # strength: Rock.md); Cohesion = 4 x Tensile (Rock.md: what the high ratios need;
+    # lower goes the wrong way); bond friction 30 deg; the recipe's Bond Range and Moment
+    # Contribution (the levers of phi and UCS / sigma_t).
     p = {"BondModulus": e_t or 1e9, "BondStiffnessRatio": 0.4,
          "TensileStrength": (ucs_t / 10.0) if ucs_t else (st_t or 1e6),
-         "CohesionRatio": 2.0, "FrictionAngle": 30.0}
+         "CohesionRatio": 4.0, "FrictionAngle": 30.0,
+         "BondRange": float(recipe["bond_range"]), "MomentContribution": float(recipe["moment_contribution"])}
     measured = {}
     unreachable = set()
+    spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
     max_tests = recipe["max_tests"]
 
     def report(stage, kind, result_measured):
@@ -650,6 +715,26 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
     def within(errs, keys):
         return all(k in errs and abs(errs[k]) <= tol[k] for k in keys if k in target)
+
+    def latest():
+        """The latest error of every property, and the properties whose latest measurement
+        was made with other cement properties than p's now (stale: a later stage moved a
+        lever, e.g. a new Bond Range changes E, nu and the strengths)."""
+        errs, stale, now = {}, set(), cement_properties(p, recipe)
+        for rec in iterations:
+            for k, v in rec["errors"].items():
+                errs[k] = v
+                if rec["parameters"] == now:
+                    stale.discard(k)
+                else:
+                    stale.add(k)
+        return errs, stale
+
+    def settled(keys):
+        """Every key not unreachable is within its tolerance, measured with p as it is."""
+        errs, stale = latest()
+        keys = [k for k in keys if k not in unreachable]
+        return within(errs, keys) and not stale.intersection(keys)
 
     elastic_strain = 0.25 * (ucs_t / e_t) if (ucs_t and e_t) else 2e-4
     elastic_strain = min(max(elastic_strain, 1e-4), 2e-3)
@@ -689,7 +774,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
     for _round in range(4):
         # ---- 1. stiffness ------------------------------------------------------------
-        if stiff_keys:
+        # (a stage whose properties are within tolerance and current is not run again)
+        if stiff_keys and not settled(stiff_keys):
             solvers = stiffness_solvers()
             while bench.tests < max_tests:
                 r = bench.compression(p, elastic_strain, elastic=True)
@@ -701,12 +787,12 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         # Every compression to failure measures E and nu too (the laboratory's values, in
         # the window below the peak); they keep being matched here, jointly with the
         # strengths (one secant per variable, all updated after each test).
-        if strength_keys:
+        if strength_keys and not settled(stiff_keys + strength_keys):
             solvers = stiffness_solvers()
-            s_solver = SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
-            lo, hi = BRACKETS["CohesionRatio"]
-            q_solver = SecantSolver(ucs_t / st_t, lo, hi, slope_guess=1.5, max_step=1.0) \
-                if (ucs_t and st_t) else None
+            def new_scale_solver():
+                return SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
+            s_solver = new_scale_solver()
+            q_chain = LeverChain(RATIO_LEVERS, ucs_t / st_t, p, spent) if (ucs_t and st_t) else None
             while bench.tests < max_tests:
                 ucs_strain = _ucs_strain(target)
                 m = {}
@@ -730,21 +816,26 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 elif not ucs_t and abs(errs["tensile_strength"]) > tol["tensile_strength"]:
                     p["TensileStrength"] *= st_t / m["tensile_strength"]
                     done = False
-                if q_solver and "tensile_strength" not in unreachable and \
+                if q_chain and "tensile_strength" not in unreachable and \
                         abs(errs["tensile_strength"]) > tol["tensile_strength"]:
-                    q_solver.add(p["CohesionRatio"], m["ucs"] / m["tensile_strength"])
-                    x = q_solver.next_x()
-                    if q_solver.unreachable:
-                        unreachable.add("tensile_strength")
-                    else:
-                        p["CohesionRatio"] = x
+                    if q_chain.update(m["ucs"] / m["tensile_strength"]):
                         done = False
+                        # the ratio's lever (beta, Cohesion / Tensile) moves UCS and E as
+                        # well: the points the scale and stiffness secants kept belong to
+                        # the old lever value, so they start again from the next test
+                        # (their first step, slope 1 on log-log, is the proportional one)
+                        s_solver = new_scale_solver()
+                        solvers = stiffness_solvers()
+                    else:
+                        unreachable.add("tensile_strength")
                 if done:
                     break
         # ---- 3. envelope ---------------------------------------------------------------
-        if env_keys:
-            lo, hi = BRACKETS["FrictionAngle"]
-            f_solver = SecantSolver(target["friction_angle"], lo, hi, slope_guess=0.5, max_step=20.0)
+        tri = [rec for rec in iterations if rec["stage"] == "envelope"]
+        if env_keys and not (("friction_angle" in unreachable or settled(env_keys)) and tri and
+                             tri[-1]["parameters"] == cement_properties(p, recipe)):
+            # (run unless phi is settled or unreachable and already measured with p as it is)
+            f_chain = LeverChain(ENVELOPE_LEVERS, target["friction_angle"], p, spent)
             confining = list(target["confining_stresses"])
             while bench.tests + len(confining) <= max_tests:
                 results, coh, phi = bench.triaxial(p, confining, min(0.03, max(0.005, 8.0 * (ucs_t or 0.0) / (e_t or 1e300))))
@@ -757,27 +848,21 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                     break
                 if abs(errs["friction_angle"]) <= tol["friction_angle"]:
                     break
-                f_solver.add(p["FrictionAngle"], phi)
-                x = f_solver.next_x()
-                if f_solver.unreachable:
+                if "friction_angle" in unreachable or not f_chain.update(phi):
                     unreachable.add("friction_angle")
                     break
-                p["FrictionAngle"] = x
         # ---- all together? ---------------------------------------------------------------
-        last = {}
-        for rec in iterations:
-            last.update(rec["errors"])
-        keys = [k for k in stiff_keys + strength_keys + env_keys if k not in unreachable]
-        if within(last, keys) or bench.tests >= max_tests:
+        if settled(stiff_keys + strength_keys + env_keys) or bench.tests >= max_tests:
             break
-        # a later stage moved an earlier one's property: go round again from stiffness
-    final_errors = {}
-    for rec in iterations:
-        final_errors.update(rec["errors"])
+        # a later stage moved an earlier one's property (or a lever: a new Bond Range
+        # changes E, nu and the strengths): go round again from stiffness
+    final_errors, stale = latest()
     all_keys = stiff_keys + strength_keys + env_keys
-    converged = within(final_errors, all_keys) and not unreachable
+    stale = sorted(stale.intersection(all_keys))
+    converged = within(final_errors, all_keys) and not unreachable and not stale
     not_within = sorted(k for k in all_keys if not (k in final_errors and abs(final_errors[k]) <= tol[k]))
     result = {"converged": converged, "unreachable": sorted(unreachable), "not_within": not_within,
+              "stale": stale,
               "parameters": dict(p), "pack": dict(bench.pack_props),
               "cement": cement_properties(p, recipe),
               "test": {"strain_per_step": recipe["strain_per_step"], "timestep_safety": recipe["timestep_safety"]},
@@ -793,7 +878,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
 
 ITERATION_COLUMNS = ("test", "stage", "kind", "BondModulus", "BondStiffnessRatio", "TensileStrength",
-                     "Cohesion", "FrictionAngle", "bonded_coordination", "youngs_modulus", "poissons_ratio",
+                     "Cohesion", "FrictionAngle", "BondRange", "MomentContribution", "bonded_coordination", "youngs_modulus", "poissons_ratio",
                      "ucs", "tensile_strength", "friction_angle", "err_youngs_modulus", "err_poissons_ratio",
                      "err_ucs", "err_tensile_strength", "err_friction_angle", "seconds")
 

@@ -58,9 +58,11 @@ def main():
 
     def progress(rec):
         m, e, p = rec["measured"], rec["errors"], rec["parameters"]
-        print("test %2d %-9s Eb %.4g Pa, ks/kn %.3g, T %.4g Pa, C %.4g Pa, phi_b %.1f | %s | errors %s | %.0f s"
+        print("test %2d %-9s Eb %.4g Pa, ks/kn %.3g, T %.4g Pa, C %.4g Pa, phi_b %.1f, range %.3f, beta %.3f, "
+              "coordination %.2f | %s | errors %s | %.0f s"
               % (rec["test"], rec["stage"], p["BondModulus"], p["BondStiffnessRatio"], p["TensileStrength"],
-                 p["Cohesion"], p["FrictionAngle"],
+                 p["Cohesion"], p["FrictionAngle"], p["BondRange"], p["MomentContribution"],
+                 rec["bonded_coordination"],
                  ", ".join("%s %.4g" % (k, v) for k, v in m.items() if isinstance(v, float)),
                  ", ".join("%s %+.3g" % (k, v) for k, v in e.items()), rec["seconds"]), flush=True)
 
@@ -69,10 +71,16 @@ def main():
                                progress=progress, output=args.output)
     print("specimen: %d grains, porosity %.3f, bonded coordination %.2f"
           % (result["elements"], result["porosity"], result["bonded_coordination"]))
-    print("%s: %s after %d specimen tests in %.0f s; unreachable: %s; not within tolerance: %s"
+    print("%s: %s after %d specimen tests in %.0f s; unreachable: %s; not within tolerance: %s; "
+          "measured with other parameters than the final ones: %s"
           % (target.get("name", args.rock), "CONVERGED" if result["converged"] else "NOT CONVERGED",
              result["tests"], result["seconds"], ", ".join(result["unreachable"]) or "none",
-             ", ".join(result["not_within"]) or "none"))
+             ", ".join(result["not_within"]) or "none", ", ".join(result["stale"]) or "none"))
+    c = result["cement"]
+    print("calibrated: Bond Modulus %.4g Pa, Bond Stiffness Ratio %.4g, Tensile %.4g Pa, Cohesion %.4g Pa, "
+          "Bond Range %.4g, Moment Contribution %.4g" % (c["BondModulus"], c["BondStiffnessRatio"],
+                                                         c["TensileStrength"], c["Cohesion"], c["BondRange"],
+                                                         c["MomentContribution"]))
     for key in ("youngs_modulus", "poissons_ratio", "ucs", "tensile_strength", "friction_angle"):
         if key in target:
             print("  %-17s target %-10.4g measured %-10.4g error %+.3g (tolerance %g)"

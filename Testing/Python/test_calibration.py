@@ -46,6 +46,10 @@ with open(os.path.join(out, "iterations.csv")) as f:
 c.check(len(rows) == 1 + len(records), "iterations.csv: %d rows for %d records" % (len(rows) - 1, len(records)))
 doc = rockdem.load_parameters(os.path.join(out, "parameters.json"))
 c.check(doc["cement"] == res["cement"] and doc["converged"], "parameters.json reads back: %s" % doc["cement"])
+c.check(doc["cement"]["BondRange"] == res["parameters"]["BondRange"] and
+        doc["cement"]["MomentContribution"] == res["parameters"]["MomentContribution"],
+        "parameters.json carries the Bond Range %g and Moment Contribution %g (no phi, no sigma_t target: "
+        "the recipe's)" % (doc["cement"]["BondRange"], doc["cement"]["MomentContribution"]))
 c.check(os.path.exists(os.path.join(out, "ucs_history.csv")), "the final UCS test's curve is written")
 # the parameter file rebuilds the same specimen: the same UCS
 pack, cement = rockdem.build_specimen(doc)

@@ -5,11 +5,12 @@ with a known root (linear, strongly curved, noisy-free log-log), its bracket and
 'unreachable' answer; then the whole calibrate() loop on a synthetic specimen whose
 property relations are closed-form (E proportional to the Bond Modulus and falling with
 the Bond Stiffness Ratio, nu falling with the ratio, UCS proportional to the bond
-strength and UCS / sigma_t rising with Cohesion / Tensile and saturating at 5.6, the
-ceiling Documentation/Rock.md first measured at Moment Contribution 1), so the parameters it must find are known; a
-target it cannot reach (UCS / sigma_t = 60, the issue's example) stops within the test
-budget and names the unreachable target; bad targets give errors naming key, value and
-range.
+strength, UCS / sigma_t falling with the Moment Contribution from 14 to 5.6 and with a
+lower Cohesion / Tensile, the friction angle rising with the Bond Range, as
+Documentation/Rock.md measured), so the parameters it must find are known: the levers
+alone to 1e-9 (LeverChain), then calibrate(); a target it cannot reach (UCS / sigma_t =
+60, the issue's example; a friction angle of 27.8 deg) stops within the test budget and
+names the unreachable target; bad targets give errors naming key, value and range.
 """
 import math
 import os
@@ -67,10 +68,30 @@ c.check(all(-1.0 <= s <= 1.0 for s in seen), "every evaluation inside the bracke
 
 
 # --- 2. the calibration loop on a synthetic specimen -----------------------------------
+# Closed-form relations shaped like the measured ones (Rock.md): the friction angle rises
+# with the Bond Range (41.7 deg at 1.0, 27 deg per unit) and ignores the bond Friction
+# Angle; UCS / sigma_t falls with the Moment Contribution (14 at beta 0, 5.6 at beta 1),
+# falls with a lower Cohesion / Tensile, and rises with the Bond Range; E rises with the
+# Bond Range (the coordination), so a new Bond Range moves E and the rounds must re-check it.
+def g_range(br):
+    return 0.8 + 0.5 * (br - 1.0)           # 1 at Bond Range 1.4
+
+
+def e_range(br):
+    return 0.6 + br / 3.5                    # 1 at Bond Range 1.4
+
+
+def ratio_of(beta, q, br):
+    return (14.0 - 8.4 * beta) * math.sqrt(q / 4.0) * g_range(br)
+
+
+def phi_of(br):
+    return 41.7 + 27.0 * (br - 1.0)
+
+
 class SyntheticBench:
-    """Closed-form property relations (an exactly known answer):
-    E = 0.6 Eb (1 + 0.5 r) / (1 + 0.5 * 0.4), nu = 0.28 - 0.12 log(1 + r) clipped > 0,
-    UCS = T (1 + 1.9 q) / (1 + 0.12 q)^2 x ...: ratio(q) = 5.6 q^2 / (1 + q^2), sigma_t = 0.9 T."""
+    """E = 0.6 Eb (1 + 0.5 r) e_range(BR), nu = 0.28 - 0.12 log(1 + r), sigma_t = 0.9 T,
+    UCS = sigma_t ratio_of(beta, q, BR), phi = phi_of(BR) (q = Cohesion / Tensile)."""
 
     def __init__(self):
         self.tests = 0
@@ -81,18 +102,17 @@ class SyntheticBench:
 
     @staticmethod
     def props(p):
-        r, eb = p["BondStiffnessRatio"], p["BondModulus"]
-        e = 0.6 * eb * (1 + 0.5 * r)
+        r, eb, br = p["BondStiffnessRatio"], p["BondModulus"], p["BondRange"]
+        e = 0.6 * eb * (1 + 0.5 * r) * e_range(br)
         nu = 0.28 - 0.12 * math.log(1 + r)
-        q = p["CohesionRatio"]
         st = 0.9 * p["TensileStrength"]
-        ratio = 5.6 * q * q / (1 + q * q)
-        phi = 10.0 + 0.8 * p["FrictionAngle"]
-        return e, nu, st * ratio, st, phi
+        ratio = ratio_of(p["MomentContribution"], p["CohesionRatio"], br)
+        return e, nu, st * ratio, st, phi_of(br)
 
     def compression(self, p, strain, elastic=False):
         self.tests += 1
         e, nu, ucs, st, phi = self.props(p)
+        self.coordination = 5.9 + 13.5 * (p["BondRange"] - 1.0)
         return {"E": e, "nu": nu, "ucs": ucs, "history": {}}
 
     def tension(self, p, strain):
@@ -109,47 +129,113 @@ class SyntheticBench:
         pass
 
 
+# 2a. the levers alone, to a tight tolerance: LeverChain on the exact relations
+def chain_solve(levers, goal, p, y_of, tolerance=1e-9, n_max=40):
+    spent = set()
+    chain = cal.LeverChain(levers, goal, p, spent)
+    for n in range(1, n_max + 1):
+        y = y_of(p)
+        if abs(y - goal) <= tolerance:
+            return True, n, spent
+        if not chain.update(y):
+            return False, n, spent
+    return False, n_max, spent
+
+
+p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0}
+ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 50.0, p, lambda q: phi_of(q["BondRange"]))
+c.check(ok and abs(p["BondRange"] - (1 + 8.3 / 27.0)) < 1e-9,
+        "phi = 50 deg on Bond Range: %.9g (exact %.9g) in %d evaluations" % (p["BondRange"], 1 + 8.3 / 27.0, n))
+ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 27.8, p, lambda q: phi_of(q["BondRange"]))
+c.check(not ok and p["BondRange"] == 1.0 and spent == {"BondRange"} and n <= 4,
+        "phi = 27.8 deg: Bond Range spent at its bound %g after %d evaluations (closest %.1f deg)"
+        % (p["BondRange"], n, phi_of(p["BondRange"])))
+p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0}
+ok, n, spent = chain_solve(cal.RATIO_LEVERS, 9.0, p,
+                           lambda q: ratio_of(q["MomentContribution"], q["CohesionRatio"], 1.4))
+c.check(ok and abs(p["MomentContribution"] - 5.0 / 8.4) < 1e-9 and p["CohesionRatio"] == 4.0 and not spent,
+        "UCS / sigma_t = 9 on Moment Contribution: beta %.9g (exact %.9g) in %d evaluations, Cohesion / Tensile "
+        "untouched" % (p["MomentContribution"], 5.0 / 8.4, n))
+p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0}
+ok, n, spent = chain_solve(cal.RATIO_LEVERS, 4.0, p,
+                           lambda q: ratio_of(q["MomentContribution"], q["CohesionRatio"], 1.4))
+q_low = 4.0 * (4.0 / 5.6) ** 2
+c.check(ok and p["MomentContribution"] == 1.0 and abs(p["CohesionRatio"] - q_low) < 1e-9 and
+        spent == {"MomentContribution"},
+        "UCS / sigma_t = 4 (below beta 1's 5.6): beta spent at 1, then Cohesion / Tensile %.9g (exact %.9g), "
+        "%d evaluations" % (p["CohesionRatio"], q_low, n))
+
+# 2b. the whole calibrate() loop
 target = {"name": "synthetic", "youngs_modulus": 20e9, "poissons_ratio": 0.18, "ucs": 50e6,
-          "tensile_strength": 12e6, "friction_angle": 40.0, "confining_stresses": [0, 5e6, 10e6]}
+          "tensile_strength": 6e6, "friction_angle": 46.0, "confining_stresses": [0, 5e6, 10e6]}
 log = []
 res = cal.calibrate(target, {"max_tests": 60}, progress=log.append, bench=SyntheticBench())
 p = res["parameters"]
 # the exact answer
+br_exact = 1.0 + (46.0 - 41.7) / 27.0
 r_exact = math.exp((0.28 - 0.18) / 0.12) - 1
-eb_exact = 20e9 / (0.6 * (1 + 0.5 * r_exact))
-ratio = 50.0 / 12.0
-q_exact = math.sqrt(ratio / (5.6 - ratio))
-t_exact = 12e6 / 0.9
-phi_exact = (40.0 - 10.0) / 0.8
-c.check(res["converged"], "synthetic rock: converged (%d tests, unreachable %s)" % (res["tests"], res["unreachable"]))
+eb_exact = 20e9 / (0.6 * (1 + 0.5 * r_exact) * e_range(br_exact))
+beta_exact = (14.0 - (50.0 / 6.0) / g_range(br_exact)) / 8.4
+t_exact = 6e6 / 0.9
+c.check(res["converged"] and not res["stale"],
+        "synthetic rock: converged (%d tests, unreachable %s, stale %s)" % (res["tests"], res["unreachable"],
+                                                                          res["stale"]))
 for key, tolerance in cal.DEFAULT_TOLERANCES.items():
     err = res["errors"].get(key)
     c.check(err is not None and abs(err) <= tolerance, "synthetic %s: error %.4g within %g" % (key, err, tolerance))
 c.check(res["tests"] <= 40, "synthetic: %d specimen tests (<= 40)" % res["tests"])
 # The parameters are set only as closely as the tolerances on the properties allow: E
-# within 5 % and nu within 0.03 leave Eb and r that far (E depends on both).
-c.check(abs(p["BondStiffnessRatio"] / r_exact - 1) < 0.3 and abs(p["BondModulus"] / eb_exact - 1) < 0.12 and
-        abs(p["CohesionRatio"] / q_exact - 1) < 0.1 and abs(p["TensileStrength"] / t_exact - 1) < 0.1 and
-        abs(p["FrictionAngle"] - phi_exact) < 4.0,
+# within 5 % and nu within 0.03 leave Eb and r that far (E depends on both); phi within
+# 3 deg leaves the Bond Range within 3 / 27; UCS and sigma_t within 5 % leave the ratio
+# within about 10 %, beta within about 0.1.
+c.check(abs(p["BondStiffnessRatio"] / r_exact - 1) < 0.3 and abs(p["BondModulus"] / eb_exact - 1) < 0.15 and
+        abs(p["MomentContribution"] - beta_exact) < 0.12 and abs(p["TensileStrength"] / t_exact - 1) < 0.1 and
+        abs(p["BondRange"] - br_exact) < 3.0 / 27.0 and p["CohesionRatio"] == 4.0,
         "synthetic parameters near the exact answer: Eb %.4g (%.4g), r %.3g (%.3g), T %.4g (%.4g), "
-        "q %.3g (%.3g), phi_b %.3g (%.3g)" % (p["BondModulus"], eb_exact, p["BondStiffnessRatio"], r_exact,
-                                              p["TensileStrength"], t_exact, p["CohesionRatio"], q_exact,
-                                              p["FrictionAngle"], phi_exact))
+        "beta %.3g (%.3g), Bond Range %.3g (%.3g), Cohesion / Tensile %g (4)"
+        % (p["BondModulus"], eb_exact, p["BondStiffnessRatio"], r_exact, p["TensileStrength"], t_exact,
+           p["MomentContribution"], beta_exact, p["BondRange"], br_exact, p["CohesionRatio"]))
+c.check(res["cement"]["BondRange"] == p["BondRange"] and res["cement"]["MomentContribution"] == p["MomentContribution"],
+        "the cement properties carry the calibrated Bond Range %.4g and Moment Contribution %.4g"
+        % (res["cement"]["BondRange"], res["cement"]["MomentContribution"]))
+stages = [rec["stage"] for rec in log]
+c.check("envelope" in stages and any(s in ("stiffness", "strength") for s in stages[stages.index("envelope"):]),
+        "a new Bond Range is followed by a re-check of E and nu (stages %s)" % " ".join(s[:3] for s in stages))
 c.check(len(log) == len(res["iterations"]) and all(
     set(("test", "stage", "parameters", "measured", "errors")) <= set(rec) for rec in log),
     "progress called once per test record with parameters, measured, errors (%d calls)" % len(log))
 c.check([rec["stage"] for rec in log][0] == "stiffness" and "strength" in [rec["stage"] for rec in log]
         and "envelope" in [rec["stage"] for rec in log], "stages in the laboratory's order: stiffness first")
+rows = cal.iteration_rows(res["iterations"])
+i_br, i_beta = cal.ITERATION_COLUMNS.index("BondRange"), cal.ITERATION_COLUMNS.index("MomentContribution")
+c.check(len(set(r[i_br] for r in rows)) > 1 and len(set(r[i_beta] for r in rows)) > 1,
+        "the iteration table shows the Bond Range and the Moment Contribution moving")
 
-# unreachable: UCS / sigma_t = 60 (the issue's example) on a model that tops out at 5.6
+# the ratio below what beta 1 gives: beta spent at 1, Cohesion / Tensile lowered instead
+res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 40e6, "tensile_strength": 10e6}, {"max_tests": 40},
+                    bench=SyntheticBench())
+c.check(res["converged"] and res["parameters"]["MomentContribution"] == 1.0 and
+        abs(res["parameters"]["CohesionRatio"] / q_low - 1) < 0.15,
+        "UCS / sigma_t = 4: converged in %d tests, beta %g, Cohesion / Tensile %.3g (exact %.3g)"
+        % (res["tests"], res["parameters"]["MomentContribution"], res["parameters"]["CohesionRatio"], q_low))
+
+# unreachable: UCS / sigma_t = 60 (the issue's example) on a model that tops out at 14
 bad = {"youngs_modulus": 20e9, "ucs": 60e6, "tensile_strength": 1e6}
 res = cal.calibrate(bad, {"max_tests": 30}, bench=SyntheticBench())
 c.check(not res["converged"] and res["unreachable"] == ["tensile_strength"] and res["tests"] <= 30,
         "UCS / sigma_t = 60: not converged, unreachable %s after %d tests; closest sigma_t error %+.3g, UCS error %+.3g"
         % (res["unreachable"], res["tests"], res["errors"]["tensile_strength"], res["errors"]["ucs"]))
-c.check(abs(res["errors"]["ucs"]) <= 0.05 and res["parameters"]["CohesionRatio"] == cal.BRACKETS["CohesionRatio"][1],
-        "unreachable ratio: UCS still matched, Cohesion / Tensile at the bracket's end %g"
-        % res["parameters"]["CohesionRatio"])
+c.check(abs(res["errors"]["ucs"]) <= 0.05 and res["parameters"]["MomentContribution"] == 0.0 and
+        res["parameters"]["CohesionRatio"] == cal.BRACKETS["CohesionRatio"][1],
+        "unreachable ratio: UCS still matched, beta %g and Cohesion / Tensile %g at their brackets' ends"
+        % (res["parameters"]["MomentContribution"], res["parameters"]["CohesionRatio"]))
+# unreachable friction angle: 27.8 deg (Berea) on a model whose lowest is 41.7 at Bond Range 1
+res = cal.calibrate({"friction_angle": 27.8, "confining_stresses": [0.0, 5e6, 1e7]}, {"max_tests": 30},
+                    bench=SyntheticBench())
+c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and res["tests"] <= 12 and
+        res["parameters"]["BondRange"] == 1.0 and abs(res["measured"]["friction_angle"] - 41.7) < 1e-9,
+        "phi = 27.8 deg: unreachable after %d tests, Bond Range %g, closest phi %.2f deg (exact 41.7)"
+        % (res["tests"], res["parameters"]["BondRange"], res["measured"]["friction_angle"]))
 # a friction angle alone (no E, no UCS) is calibrated too
 res = cal.calibrate({"friction_angle": 40.0, "confining_stresses": [0.0, 5e6, 1e7]}, {}, bench=SyntheticBench())
 c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
@@ -191,6 +277,13 @@ cal.write_outputs(res, folder)
 doc = cal.load_parameters(os.path.join(folder, "parameters.json"))
 c.check(doc["cement"] == res["cement"] and doc["converged"] == res["converged"],
         "parameters.json reads back the cement properties: %s" % doc["cement"])
+res = cal.calibrate(target, {"max_tests": 60}, bench=SyntheticBench())
+cal.write_outputs(res, folder)
+doc = cal.load_parameters(os.path.join(folder, "parameters.json"))
+c.check(doc["cement"]["BondRange"] == res["parameters"]["BondRange"] != 1.4 and
+        doc["cement"]["MomentContribution"] == res["parameters"]["MomentContribution"] != 1.0,
+        "parameters.json carries the calibrated Bond Range %.4g and Moment Contribution %.4g (what DEM Cement "
+        "and build_specimen load)" % (doc["cement"]["BondRange"], doc["cement"]["MomentContribution"]))
 with open(os.path.join(folder, "iterations.csv")) as f:
     lines = f.read().splitlines()
 c.check(len(lines) == 1 + res["tests"] - 0 or len(lines) == 1 + len(res["iterations"]),
