@@ -703,6 +703,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     measured = {}
     unreachable = set()
     spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
+    tested = {}            # p as it was at the latest test
     max_tests = recipe["max_tests"]
 
     def report(stage, kind, result_measured):
@@ -712,6 +713,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                "measured": dict(result_measured), "errors": errs,
                "bonded_coordination": bench.coordination, "seconds": time.time() - t_start}
         iterations.append(rec)
+        tested.clear()
+        tested.update(p)
         if progress:
             progress(rec)
         return errs
@@ -865,6 +868,11 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             break
         # a later stage moved an earlier one's property (or a lever: a new Bond Range
         # changes E, nu and the strengths): go round again from stiffness
+    if tested and cement_properties(p, recipe) != cement_properties(tested, recipe):
+        # the budget ran out after a step: the result (and the parameter file) keeps the
+        # parameters of the latest test, which were measured, not the step's untried ones
+        p.clear()
+        p.update(tested)
     final_errors, stale = latest()
     all_keys = stiff_keys + strength_keys + env_keys
     stale = sorted(stale.intersection(all_keys))

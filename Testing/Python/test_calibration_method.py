@@ -265,6 +265,8 @@ c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
 res = cal.calibrate(target, {"max_tests": 3}, bench=SyntheticBench())
 c.check(not res["converged"] and res["tests"] <= 3 and res["not_within"],
         "budget of 3 tests: stops after %d, not within %s" % (res["tests"], res["not_within"]))
+c.check(res["cement"] == res["iterations"][-1]["parameters"],
+        "budget spent: the result keeps the parameters of the latest test (measured), not an untried step")
 
 # --- 3. bad targets: key, value and range in the message --------------------------------
 bad_cases = [
