@@ -799,7 +799,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 return SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
             s_solver = new_scale_solver()
             q_chain = LeverChain(RATIO_LEVERS, math.log(ucs_t / st_t), p, spent) if (ucs_t and st_t) else None
-            while bench.tests < max_tests:
+            pair = (1 if ucs_t else 0) + (1 if st_t else 0)
+            while bench.tests + pair <= max_tests:   # (a compression and a tension per record)
                 ucs_strain = _ucs_strain(target)
                 m = {}
                 if ucs_t:

@@ -263,6 +263,9 @@ c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
         "friction angle alone: converged, error %+.3g deg after %d tests" % (res["errors"]["friction_angle"], res["tests"]))
 # a test budget that is too small stops and says so
 res = cal.calibrate(target, {"max_tests": 3}, bench=SyntheticBench())
+for budget in (11, 12):
+    r = cal.calibrate(target, {"max_tests": budget}, bench=SyntheticBench())
+    c.check(r["tests"] <= budget, "budget of %d tests: %d run" % (budget, r["tests"]))
 c.check(not res["converged"] and res["tests"] <= 3 and res["not_within"],
         "budget of 3 tests: stops after %d, not within %s" % (res["tests"], res["not_within"]))
 c.check(res["cement"] == res["iterations"][-1]["parameters"],
