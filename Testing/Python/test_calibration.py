@@ -3,11 +3,13 @@
 A tiny specimen (300 grains) is calibrated to a Young's modulus of 500 MPa and a UCS of
 1 MPa, which the model reaches (soft moduli keep the steps long, Rock.md; the number of
 steps to failure does not depend on the modulus). The starting parameters give about
-20 % of that E and 30 % of that UCS, so both secant loops have to move. Checks: converged; the final errors within the stated tolerances (5 %);
+that E (the Bond Modulus starts at the target E) and 40 % of that UCS, so the strength
+secant has to move (and E to be held as it does). Checks: converged; the final errors within the stated tolerances (5 %);
 the number of specimen tests bounded (<= 12); one progress record per test; the files
 (iterations.csv with a row per record, parameters.json that load_parameters reads back);
-the parameter file rebuilds the calibrated specimen (build_specimen: the same bonded
-coordination, the same seed).
+the parameter file carries the Bond Range and Moment Contribution (the recipe's here:
+no friction angle, no tensile strength in the target) and rebuilds the calibrated
+specimen (build_specimen: the same bonded coordination, the same seed).
 """
 import os
 import sys
