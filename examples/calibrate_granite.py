@@ -2,6 +2,7 @@
 
     pvpython examples/calibrate_granite.py [--rock lac_du_bonnet_granite] [--elements 600]
         [--max-tests 30] [--only E,nu,UCS,sigma_t,phi] [--verify 2,3,4] [--output results/calibration]
+        [--strain-per-step 1e-6]
 
 Loads the preset Data/rocks/<rock>.json (Lac du Bonnet granite by default; also
 berea_sandstone), runs rockdem.calibrate on one compacted specimen of the given size and
@@ -34,6 +35,9 @@ def main():
     parser.add_argument("--verify", default="",
                         help="seeds of fresh specimens to test the calibrated parameters on, e.g. 2,3,4")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results", "calibration"))
+    parser.add_argument("--strain-per-step", type=float, default=None,
+                        help="platen strain per timestep of every test (the recipe's strain_per_step, "
+                             "default 1e-6; Rock.md used 1e-7 in compression, 1e-8 in tension)")
     args = parser.parse_args()
     plugin = os.environ.get("ROCKDEM_PLUGIN") or os.path.join(
         SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so")
@@ -66,8 +70,10 @@ def main():
                  ", ".join("%s %.4g" % (k, v) for k, v in m.items() if isinstance(v, float)),
                  ", ".join("%s %+.3g" % (k, v) for k, v in e.items()), rec["seconds"]), flush=True)
 
-    result = rockdem.calibrate(target, {"elements": args.elements, "seed": args.seed,
-                                        "max_tests": args.max_tests},
+    recipe = {"elements": args.elements, "seed": args.seed, "max_tests": args.max_tests}
+    if args.strain_per_step is not None:
+        recipe["strain_per_step"] = args.strain_per_step
+    result = rockdem.calibrate(target, recipe,
                                progress=progress, output=args.output)
     print("specimen: %d grains, porosity %.3f, bonded coordination %.2f"
           % (result["elements"], result["porosity"], result["bonded_coordination"]))
