@@ -91,6 +91,25 @@ std::string errorOf(const Model& pack, const SpecimenSettings& s)
   return "";
 }
 
+/// Shape Cylinder, 12 mm across and 18 mm long along `axis`.
+SpecimenSettings cylinderSettings(int axis = 2)
+{
+  SpecimenSettings s;
+  s.axis = axis;
+  s.diameter = 0.012;
+  s.length = 0.018;
+  return s;
+}
+
+/// The cylinder the press tests use: 12 mm across, 18 mm long along `axis`, carved from
+/// the 1,500-grain pack in a 20 mm cube.
+Model carvedCylinder(int axis = 2)
+{
+  Model m = specimen(1500, 0.02, 0.0005, 0.0008, 3);
+  carveSpecimen(m, cylinderSettings(axis));
+  return m;
+}
+
 } // namespace
 
 TEST(Specimen, CylinderKeepsTheCentresInsideAndShrinksTheBox)
@@ -159,11 +178,7 @@ TEST(Specimen, TwoDimensionalRectangleAndDisc)
 
 TEST(Specimen, CarvedSpecimenRunsAndTests)
 {
-  Model m = specimen(1500, 0.02, 0.0005, 0.0008, 3);
-  SpecimenSettings s;
-  s.diameter = 0.012;
-  s.length = 0.018;
-  carveSpecimen(m, s);
+  Model m = carvedCylinder();
   LoadTestSettings ucs;
   ucs.mode = TestMode::Compression;
   ucs.strainRate = 0.05;
@@ -231,16 +246,13 @@ TEST(Specimen, CarvingSetsTheOutlineThePressMeasuresWith)
 
 // A carved cylinder's axial stress is the platen force over its circular cross-section,
 // pi D^2 / 4 (ISRM 1979, the suggested method for the UCS of cylinders), not over the
-// square D^2 of its bounding box: the same model measured as a box reads pi/4 of it (the
-// box's lateral lengths here being the cylinder's diameter). D starts as twice the mean
-// outer reach of the surface grains, the membrane's radius.
+// square of its bounding box. D starts as twice the mean outer reach of the surface
+// grains, the membrane's radius; the same grains measured as a box read the push over the
+// square of their extents.
 TEST(Specimen, CompressionOfACylinderDividesThePlatenForceByItsCircularSection)
 {
-  Model cylinder = specimen(1500, 0.02, 0.0005, 0.0008, 3);
-  SpecimenSettings s;
-  s.diameter = 0.012;
-  s.length = 0.018;
-  carveSpecimen(cylinder, s);
+  const SpecimenSettings s = cylinderSettings();
+  Model cylinder = carvedCylinder();
   ASSERT_EQ(cylinder.domain.cylinderAxis, 2);
   const double extentX = extent(cylinder, 0);
   const double extentY = extent(cylinder, 1);
@@ -287,10 +299,7 @@ TEST(Specimen, CompressionOfACylinderDividesThePlatenForceByItsCircularSection)
 
   // Across its axis the section through a cylinder's middle is the rectangle D x L: a
   // cylinder along Y compressed along Z reads as the box does (its lengths the extents).
-  Model across = specimen(1500, 0.02, 0.0005, 0.0008, 3);
-  SpecimenSettings y = s;
-  y.axis = 1;
-  carveSpecimen(across, y);
+  Model across = carvedCylinder(1);
   Model acrossBox = across;
   acrossBox.domain.cylinderAxis = -1;
   const TestMeasurements ca = runTest(across, ucs, 1500);
@@ -302,11 +311,8 @@ TEST(Specimen, CompressionOfACylinderDividesThePlatenForceByItsCircularSection)
 
 TEST(Specimen, DirectTensionOfACylinderDividesThePullByItsCircularSection)
 {
-  Model cylinder = specimen(1500, 0.02, 0.0005, 0.0008, 3);
-  SpecimenSettings s;
-  s.diameter = 0.012;
-  s.length = 0.018;
-  carveSpecimen(cylinder, s);
+  const SpecimenSettings s = cylinderSettings();
+  Model cylinder = carvedCylinder();
   cement(cylinder, dem::testing::testCement());
   ASSERT_GT(cylinder.bonds.size(), 0u);
   Model box = cylinder;
