@@ -245,11 +245,19 @@ RemovedParticles startLoadTest(Model& model, const LoadTestSettings& settings)
   }
   const Domain& d = model.domain;
   for (int k = 0; k < 3; ++k) {
-    if (d.periodic[k] || (d.section2D && k == 2)) {
-      if (k == settings.axis || (settings.mode != TestMode::Compression && settings.mode != TestMode::Brazilian)) {
-        throw InputError(std::string("Mode = ") + modeName(settings.mode) + " needs walls on axis " +
-          "XYZ"[k] + ", but that axis is periodic (or the slab axis of a 2D section).");
-      }
+    // The slab axis of a 2D section has no walls, and needs none unless the section is to be
+    // squeezed along it: the discs move in the XY plane only, so direct tension (grips),
+    // the biaxial test (Triaxial: confined along the other in-plane axis) and the isotropic
+    // test (both in-plane axes) are complete in the plane. A periodic axis cannot be
+    // confined or gripped.
+    const bool slab = d.section2D && k == 2;
+    if (k == settings.axis && (d.periodic[k] || slab)) {
+      throw InputError(std::string("Axis = ") + "XYZ"[k] + " cannot be loaded: that axis is " +
+        (slab ? "the slab axis of a 2D section (load a section along X or Y)" : "periodic") + ".");
+    }
+    if (d.periodic[k] && settings.mode != TestMode::Compression && settings.mode != TestMode::Brazilian) {
+      throw InputError(std::string("Mode = ") + modeName(settings.mode) + " needs walls on axis " +
+        "XYZ"[k] + ", but that axis is periodic.");
     }
   }
   const int a = settings.axis;

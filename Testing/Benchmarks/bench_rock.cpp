@@ -58,6 +58,10 @@
 //     0: the cylinder inscribed in the box specimen's own pack, as before.
 //   --contact-law hertz|linear: the grains' contact law (default hertz, Hertz-Mindlin), set
 //     before Compact Elements so that the pack is compacted, cemented and tested with it.
+//   --dimension 2 [--slab T]: a 2D section instead: discs in the XY plane (slab thickness T,
+//     default 2 mm), a W x aspect W rectangle compacted to --porosity (default 0.16 in 2D,
+//     0.36 in 3D), loaded along Y; --tests ucs, tension, triaxial and rates (the others
+//     and --specimen cylinder are refused).
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -92,10 +96,12 @@ constexpr double kPi = 3.14159265358979323846;
 
 struct Options {
   long particles = 10000;
+  int dimension = 3;            // 3: spheres in a box loaded along Z; 2: discs in the XY plane loaded along Y
   double aspect = 2.0;          // specimen height / width
   double rmin = 0.001;          // m
   double rmax = 0.002;          // m
-  double porosity = 0.36;       // Compact Elements target
+  double porosity = -1.0;       // Compact Elements target; < 0: 0.36 (3D), 0.16 (2D)
+  double slab = 0.002;          // m, 2D: the slab thickness (a disc weighs rho pi r^2 t, a bond's section is 2 r t)
   double modulus = 1e8;         // Pa, grains and bonds
   double friction = 0.5;
   double rolling = 0.0;
@@ -155,11 +161,13 @@ Options parse(int argc, char** argv)
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
     { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
     { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop },
-    { "--carve-margin", &o.carveMargin } };
+    { "--carve-margin", &o.carveMargin }, { "--slab", &o.slab } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
       *doubles[a] = std::atof(argv[++i]);
+    } else if (a == "--dimension" && i + 1 < argc) {
+      o.dimension = std::atoi(argv[++i]);
     } else if (a == "--particles" && i + 1 < argc) {
       o.particles = std::atol(argv[++i]);
     } else if (a == "--tests" && i + 1 < argc) {
@@ -201,7 +209,7 @@ Options parse(int argc, char** argv)
       o.contactLaw = law == "linear" ? ContactLaw::Linear : ContactLaw::HertzMindlin;
     } else {
       std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
-                           " [--specimen box|cylinder|both] [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]", argv[0]);
+                           " [--specimen box|cylinder|both] [--dimension 3|2] [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
       }
@@ -222,7 +230,48 @@ Options parse(int argc, char** argv)
     std::fprintf(stderr, "--carve-margin = %g is out of range: valid range is [0, inf) (mean diameters)\n", o.carveMargin);
     std::exit(2);
   }
+  if (o.dimension != 2 && o.dimension != 3) {
+    std::fprintf(stderr, "--dimension = %d: valid values are 3 (spheres) and 2 (discs in the XY plane)\n", o.dimension);
+    std::exit(2);
+  }
+  if (o.dimension == 2) {
+    // The 2D specimen is a W x aspect W section loaded along Y; the carved specimens and the
+    // map sweeps are built for the 3D box only.
+    for (const char* test : { "brazilian", "envelopes", "tsmap", "servomap" }) {
+      if (o.tests.find(test) != std::string::npos) {
+        std::fprintf(stderr, "--tests %s is not available with --dimension 2 (valid there: ucs, tension, triaxial, rates)\n", test);
+        std::exit(2);
+      }
+    }
+    if (o.specimen != "box") {
+      std::fprintf(stderr, "--specimen = %s is not available with --dimension 2 (valid there: box)\n", o.specimen.c_str());
+      std::exit(2);
+    }
+    if (!(o.slab > 0.0)) {
+      std::fprintf(stderr, "--slab = %g m is out of range: valid range is (0, inf)\n", o.slab);
+      std::exit(2);
+    }
+  }
+  if (o.porosity < 0.0) {
+    o.porosity = o.dimension == 2 ? 0.16 : 0.36;
+  }
+  if (!(o.porosity > 0.0 && o.porosity < 1.0)) {
+    std::fprintf(stderr, "--porosity = %g is out of range: valid range is (0, 1)\n", o.porosity);
+    std::exit(2);
+  }
   return o;
+}
+
+/// The loading axis: Z for a 3D specimen, Y for a 2D section (discs in the XY plane).
+int loadAxis(const Model& m)
+{
+  return m.domain.section2D ? 1 : 2;
+}
+
+/// The lateral axes of the specimen (not the loading axis; in 2D X only).
+std::vector<int> lateralAxes(const Model& m)
+{
+  return m.domain.section2D ? std::vector<int>{ 0 } : std::vector<int>{ 0, 1 };
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t)
@@ -239,14 +288,18 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   Model m;
   const double a = o.rmin;
   const double b = o.rmax;
-  const double meanVolume = 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0;
+  const bool planar = o.dimension == 2;
+  // Mean grain volume for radii uniform in [a, b] (3D: 4/3 pi E[r^3]; 2D: pi t E[r^2]).
+  const double meanVolume = planar ? kPi * o.slab * (a * a + a * b + b * b) / 3.0
+                                   : 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0;
   const double volume = o.particles * meanVolume / (1.0 - o.porosity);
-  const double width = std::cbrt(volume / o.aspect);
+  const double width = planar ? std::sqrt(volume / (o.slab * o.aspect)) : std::cbrt(volume / o.aspect);
   // The specimen's box; a cylinder carved with a margin comes from a pack that much wider on
   // each side (not longer: its ends stay the pack's flat walled faces, as a laboratory grinds
   // a core's ends flat; carved ends are rough and the platens crush the grains that stick
   // out), at the same grain density (the grain count scales with the volume).
-  const Vec3 specimenSize(width, width, o.aspect * width);
+  const Vec3 specimenSize = planar ? Vec3(width, o.aspect * width, o.slab) : Vec3(width, width, o.aspect * width);
+  m.domain.section2D = planar;
   const double margin = carve == Carve::Cylinder ? o.carveMargin * (o.rmin + o.rmax) : 0.0;
   m.domain.size = specimenSize + Vec3(2.0 * margin, 2.0 * margin, 0.0);
   const double packScale = m.domain.size.prod() / specimenSize.prod();
@@ -262,14 +315,20 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   p.minimumSize = a;
   p.maximumSize = b;
   p.randomSeed = o.seed;
-  // Placed loose, at porosity 0.7 in a box `grow` times larger, then the whole pack is
-  // scaled down into the specimen box; Compact Elements grows the radii back.
+  // Placed loose, at porosity 0.7 (2D: 0.45) in a box `grow` times larger, then the whole
+  // pack is scaled down into the specimen box; Compact Elements grows the radii back. A 2D
+  // section keeps its slab (and its discs at mid-slab).
   const Vec3 full = m.domain.size;
-  const double grow = std::cbrt((1.0 - o.porosity) / 0.3);
-  m.domain.size = full * grow;
+  const double grow = planar ? std::sqrt((1.0 - o.porosity) / 0.55) : std::cbrt((1.0 - o.porosity) / 0.3);
+  m.domain.size = planar ? Vec3(full.x() * grow, full.y() * grow, full.z()) : Vec3(full * grow);
   buildPack(m, p);
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
-    m.particles.position[i] /= grow;
+    Vec3& x = m.particles.position[i];
+    x.x() /= grow;
+    x.y() /= grow;
+    if (!planar) {
+      x.z() /= grow;
+    }
     m.particles.radius[i] /= grow;
   }
   m.domain.size = full;
@@ -350,11 +409,12 @@ struct TestResult {
 };
 
 /// Broken bonds near the platens (within two mean diameters of either end of the specimen
-/// along Z, at their failure positions), over all broken bonds; optional profile.
+/// along the loading axis, at their failure positions), over all broken bonds; optional profile.
 double platenShare(const Model& m, bool profile)
 {
-  const Wall& low = m.walls[4];
-  const Wall& high = m.walls[5];
+  const int ax = loadAxis(m);
+  const Wall& low = m.walls[2 * ax];
+  const Wall& high = m.walls[2 * ax + 1];
   const double band = 2.0 * meanParticleDiameter(m);
   std::size_t near = 0, all = 0;
   const int bins = 10;
@@ -364,13 +424,13 @@ double platenShare(const Model& m, bool profile)
       continue;
     }
     ++all;
-    const double z = m.bonds.failurePosition[k].z();
+    const double z = m.bonds.failurePosition[k][ax];
     near += (z - low.position < band || high.position - z < band) ? 1 : 0;
     const int bin = std::clamp(static_cast<int>((z - low.position) / (high.position - low.position) * bins), 0, bins - 1);
     ++histogram[bin];
   }
   if (profile && all > 0) {
-    std::printf("    broken-bond profile along Z (low platen first, %d bins):", bins);
+    std::printf("    broken-bond profile along %c (low platen first, %d bins):", "XYZ"[ax], bins);
     for (std::size_t h : histogram) {
       std::printf(" %.3f", static_cast<double>(h) / all);
     }
@@ -409,8 +469,11 @@ std::string damageBreakdown(const Model& cemented, const Model& failed, bool cyl
   std::size_t skinGrains = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3& x = p.position[i];
-    skin[i] = cylinder ? (outer - axisDistance(x) < d ? 1 : 0)
-                       : ((x.x() - lo.x() < d || hi.x() - x.x() < d || x.y() - lo.y() < d || hi.y() - x.y() < d) ? 1 : 0);
+    bool nearSide = false;
+    for (const int k : lateralAxes(cemented)) {
+      nearSide = nearSide || x[k] - lo[k] < d || hi[k] - x[k] < d;
+    }
+    skin[i] = cylinder ? (outer - axisDistance(x) < d ? 1 : 0) : (nearSide ? 1 : 0);
     skinGrains += skin[i];
   }
   const Bonds& b = failed.bonds;
@@ -615,9 +678,13 @@ DfnReading readDfn(const Model& m, bool cylinder = false)
     const Vec3& size = m.domain.size;
     // How deep inside the side surface the centre lies (box: the nearest side face;
     // cylinder along Z: the model box's inscribed circle, the carved diameter).
-    const double depth = cylinder
-      ? 0.5 * std::min(size.x(), size.y()) - std::hypot(c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y())
-      : std::min({ c.x(), size.x() - c.x(), c.y(), size.y() - c.y() });
+    double depth = 1e300;
+    for (const int k : lateralAxes(m)) {
+      depth = std::min({ depth, c[k], size[k] - c[k] });
+    }
+    if (cylinder) {
+      depth = 0.5 * std::min(size.x(), size.y()) - std::hypot(c.x() - 0.5 * size.x(), c.y() - 0.5 * size.y());
+    }
     std::snprintf(line, sizeof line,
       "\n    %s disc: dip %.1f, azimuth %.1f deg, radius %.3g m, centre (%.3g, %.3g, %.3g) m from the box origin, "
       "%.3g m inside the side surface, %zu cracks, planarity %.3f, fill %.2f",
@@ -683,7 +750,8 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   LoadTestSettings s;
   s.mode = mode;
   s.confinement = confinement;
-  s.axis = 2;
+  s.axis = loadAxis(m);
+  const int ax = s.axis;
   s.confiningStress = confining > 0.0 ? confining : 1e6;
   s.maxStrain = o.maxStrain;
   s.sampleInterval = 50;
@@ -736,7 +804,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     const TestMeasurements me = run.measurements();
     const double sign = mode == TestMode::Tension ? -1.0 : 1.0;
-    const double e = sign * me.strain[2];
+    const double e = sign * me.strain[ax];
     const double sigma = mode == TestMode::Triaxial ? me.axialStress : sign * me.axialStress;
     strain.push_back(e);
     stress.push_back(sigma);
@@ -744,7 +812,11 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
       std::fprintf(stderr, "  %s step %lld strain %.5f stress %.4g peak %.4g broken %zu (%.1f s)\n", modeName(mode),
                    static_cast<long long>(r.steps), e, sigma, r.peak, countBonds(m.bonds).broken, secondsSince(start));
     }
-    lateral.push_back(0.5 * (me.strain[0] + me.strain[1]));
+    double lateralStrain = 0.0;
+    for (const int k : lateralAxes(m)) {
+      lateralStrain += me.strain[k] / static_cast<double>(lateralAxes(m).size());
+    }
+    lateral.push_back(lateralStrain);
     gauge.push_back(sign * me.gaugeStrain); // the specimen's own axial strain (E and nu)
     ufr.push_back(run.diagnostics().unbalancedForceRatio);
     if (sigma > r.peak) {
@@ -1142,8 +1214,9 @@ int main(int argc, char** argv)
   const Model m = buildSpecimen(o, cemented, compacted);
   const double width = m.domain.size.x();
   const double diameter = meanParticleDiameter(m);
-  std::printf("specimen: %zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
-              m.particles.size(), width, width, m.domain.size.z(), width / diameter,
+  std::printf("specimen: %s%zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
+              m.domain.section2D ? "2D section (discs in XY, loaded along Y, slab = Z), " : "",
+              m.particles.size(), width, m.domain.size.y(), m.domain.size.z(), width / diameter,
               compacted.summary().c_str());
   std::printf("cement: Bond Range %.3g, Moment Contribution %.3g, Softening Ratio %.3g -> %s (%.1f s)\n", o.range, o.beta, o.softening,
               cemented.summary().c_str(), secondsSince(start));

@@ -465,3 +465,138 @@ TEST(Press, ContinuesOnlyATestInProgressWithTheSameSettings)
   EXPECT_TRUE(continuesTest(idle, off)) << "Off after Off keeps the walls";
   EXPECT_FALSE(continuesTest(idle, same)) << "an idle model starts the test";
 }
+
+namespace {
+
+/// A grown 2D section (discs in the XY plane, slab 1 mm) without gravity.
+Model section2D(int n, double side, std::uint64_t seed = 5)
+{
+  Model m = placedPack(Vec3(side, side, 0.001), true, n, 0.0005, 0.00075, seed);
+  growElements(m);
+  return m;
+}
+
+} // namespace
+
+// A 2D section is loaded in its plane: the slab axis Z has no walls and needs none, so the
+// isotropic test (X and Y faces) and the biaxial test (Triaxial: X faces confining, Y
+// platens) run (reference: plane-strain equilibrium, the servo's target), while loading
+// along Z is refused, naming the axis.
+TEST(Press, Section2DIsotropicAndBiaxialHoldTheConfiningStressInThePlane)
+{
+  Model iso = section2D(300, 0.03);
+  LoadTestSettings s;
+  s.mode = TestMode::Isotropic;
+  s.axis = 1;
+  s.confiningStress = 1e5;
+  s.sampleInterval = 200;
+  startLoadTest(iso, s);
+  EXPECT_FALSE(iso.walls[4].active || iso.walls[5].active) << "no walls on the slab axis";
+  Simulation sim(iso);
+  runUntilDone(iso, sim, 100);
+  ASSERT_EQ(iso.test.stage, TestStage::Done) << "stops once settled";
+  TestMeasurements me = sim.measurements();
+  for (int w = 0; w < 4; ++w) {
+    EXPECT_NEAR(me.faceStress[w], 1e5, 0.02e5) << "face " << w;
+  }
+  EXPECT_EQ(me.faceStress[4], 0.0);
+  EXPECT_EQ(me.faceStress[5], 0.0);
+  EXPECT_NEAR(me.meanStress, 1e5, 0.03e5) << "Love-Weber mean stress of the section, (sxx + syy) / 2";
+
+  Model bi = section2D(300, 0.03);
+  s.mode = TestMode::Triaxial;
+  s.axis = 1;
+  s.strainRate = 0.5;
+  s.maxStrain = 0.02;
+  startLoadTest(bi, s);
+  Simulation run(bi);
+  runUntilDone(bi, run, 200);
+  ASSERT_EQ(bi.test.stage, TestStage::Done);
+  const auto& columns = historyColumns();
+  const auto column = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  std::size_t shearRows = 0;
+  double lastDeviator = 0.0;
+  for (const auto& row : bi.test.history) {
+    if (static_cast<TestStage>(row[column("Stage")]) != TestStage::Shear) {
+      continue;
+    }
+    ++shearRows;
+    for (const char* side : { "Stress X- (Pa)", "Stress X+ (Pa)" }) {
+      EXPECT_NEAR(row[column(side)], 1e5, 0.02e5) << side << " at strain " << row[column("Strain Y")];
+    }
+    EXPECT_EQ(row[column("Strain Z")], 0.0) << "the slab does not strain";
+    lastDeviator = row[column("Deviator Stress (Pa)")];
+  }
+  EXPECT_GT(shearRows, 10u);
+  EXPECT_GT(lastDeviator, 0.1e5) << "the platen loads the section";
+  for (const Vec3& x : bi.particles.position) {
+    ASSERT_EQ(x.z(), bi.domain.midPlaneZ()) << "the discs stay in the plane";
+  }
+
+  Model flat = section2D(300, 0.03);
+  s.axis = 2;
+  for (const TestMode mode : { TestMode::Triaxial, TestMode::Isotropic, TestMode::Compression }) {
+    s.mode = mode;
+    try {
+      startLoadTest(flat, s);
+      FAIL() << modeName(mode) << " along the slab axis";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Axis = Z"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Direct tension of a cemented 2D section along Y: the grips hold the discs next to each
+// platen, the pull over the section's area (width x slab) reads negative, rises to a peak
+// and falls as the bonds break between the grips; the discs stay in the plane.
+TEST(Press, Section2DDirectTensionBreaksTheSectionBetweenTheGrips)
+{
+  Model m = section2D(300, 0.03, 7);
+  ASSERT_EQ(m.particles.size(), 300u);
+  CompactParameters dense;
+  dense.targetPorosity = 0.18;
+  compactElements(m, dense);
+  CementParameters c = testCement();
+  c.bondRange = 1.2;
+  ASSERT_GT(cement(m, c).bonds, 2 * m.particles.size()) << "bonded coordination above 4";
+  LoadTestSettings s;
+  s.mode = TestMode::Tension;
+  s.axis = 1;
+  s.strainRate = 1.0;
+  s.maxStrain = 0.05;
+  s.sampleInterval = 50;
+  startLoadTest(m, s);
+  double rmax = 0.0;
+  for (double r : m.particles.radius) {
+    rmax = std::max(rmax, r);
+  }
+  const double low = m.walls[2].position + 2.0 * rmax; // Grip Length 1: one largest diameter
+  const double high = m.walls[3].position - 2.0 * rmax;
+  Simulation sim(m);
+  double least = 0.0;
+  while (m.test.stage != TestStage::Done) {
+    sim.advance(s.sampleInterval);
+    const double sigma = sim.measurements().axialStress;
+    least = std::min(least, sigma);
+    if (m.test.peakStress > 0.0 && -sigma < 0.5 * m.test.peakStress) {
+      break; // failed: the pull has fallen below half its peak
+    }
+  }
+  EXPECT_GT(m.test.peakStress, 0.0);
+  EXPECT_NEAR(-least, m.test.peakStress, 1e-9 * m.test.peakStress) << "Peak Stress is the largest pull";
+  std::size_t broken = 0, gauge = 0;
+  for (std::size_t b = 0; b < m.bonds.size(); ++b) {
+    if (m.bonds.broken(b)) {
+      ++broken;
+      const double y = m.bonds.failurePosition[b].y();
+      gauge += (y > low && y < high) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(broken, 5u);
+  EXPECT_GE(static_cast<double>(gauge), 0.8 * static_cast<double>(broken)) << "the section breaks between the grips";
+  for (const Vec3& x : m.particles.position) {
+    ASSERT_EQ(x.z(), m.domain.midPlaneZ()) << "the discs stay in the plane";
+  }
+}
