@@ -49,6 +49,65 @@ private:
 };
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
+
+/// The opening half kick and the drift of one particle: velocity Verlet's first half,
+/// with the periodic wrap. Returns true when the particle has moved half the skin since
+/// the neighbour list was built. A particle's kick and drift read only its own state.
+class KickAndDrift {
+public:
+  KickAndDrift(Particles& p, const ContactState& im, const Domain& d, double dt)
+    : p_(p)
+    , im_(im)
+    , d_(d)
+    , separationOf_(d)
+    , dt_(dt)
+    , half_(0.5 * dt)
+    , planar_(d.section2D)
+    , anyPeriodic_(d.periodic[0] || d.periodic[1] || d.periodic[2])
+  {
+    const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+    limit2_ = limit * limit;
+  }
+  bool operator()(std::size_t i) const
+  {
+    Particles& p = p_;
+    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+    // 0), but it moves with the velocity it was given (at rest unless prescribed).
+    p.velocity[i] += (half_ * im_.inverseMass[i]) * p.force[i];
+    p.angularVelocity[i] += (half_ * im_.inverseInertia[i]) * p.torque[i];
+    if (planar_) {
+      p.velocity[i].z() = 0.0;
+      p.angularVelocity[i].x() = 0.0;
+      p.angularVelocity[i].y() = 0.0;
+    }
+    const Vec3 move = dt_ * p.velocity[i];
+    p.position[i] += move;
+    p.displacement[i] += move;
+    for (int k = 0; anyPeriodic_ && k < 3; ++k) {
+      if (d_.periodic[k]) {
+        const double lo = d_.origin[k];
+        const double length = d_.size[k];
+        if (p.position[i][k] < lo) {
+          p.position[i][k] += length;
+        } else if (p.position[i][k] >= lo + length) {
+          p.position[i][k] -= length;
+        }
+      }
+    }
+    return separationOf_(im_.positionAtBuild[i], p.position[i]).squaredNorm() > limit2_;
+  }
+
+private:
+  Particles& p_;
+  const ContactState& im_;
+  const Domain& d_;
+  MinimumImage separationOf_;
+  double dt_;
+  double half_;
+  double limit2_ = 0.0;
+  bool planar_;
+  bool anyPeriodic_;
+};
 } // namespace
 
 CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double timestep)
@@ -125,8 +184,12 @@ std::string CpuBackend::path() const
 
 void CpuBackend::run(std::int64_t steps)
 {
+  // Within one run(), each step's gather also does the next step's half kick and drift,
+  // particle by particle (the same operations on the same values: a particle's kick and
+  // drift read only its own state, which its gather has just finished). The last step of
+  // the run does not, so the state between runs is that of the whole step.
   for (std::int64_t s = 0; s < steps; ++s) {
-    step();
+    step(s + 1 == steps);
   }
 }
 
@@ -436,7 +499,7 @@ bool CpuBackend::wallsMoved() const
 // ---------------------------------------------------------------------------------------
 // Forces
 
-void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
+void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool driftNext)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -593,7 +656,9 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   const long count = static_cast<long>(n);
   const bool anyBonds = !im.bondI.empty();
   const bool anyExternal = im.externalForce.size() == n; // the membrane's pushes
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  bool stale = false; // with driftNext: the next step's drift made the list stale
+  const KickAndDrift kickAndDrift(p, im, d, timestep_);
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     Vec3 force = p.mass[i] * gravity;
@@ -660,7 +725,12 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         p.angularVelocity[i].y() = 0.0;
       }
     }
+    if (driftNext && kickAndDrift(i)) {
+      stale = true;
+    }
   }
+  drifted_ = driftNext;
+  driftedStale_ = stale;
 
   // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
   // wall's sum runs in slot order (deterministic).
@@ -794,54 +864,28 @@ void CpuBackend::computeBondForces(bool incrementState)
 // ---------------------------------------------------------------------------------------
 // Stepping
 
-void CpuBackend::step()
+void CpuBackend::step(bool last)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
-  const Domain& d = model_.domain;
   const double dt = timestep_;
-  const double half = 0.5 * dt;
-  const bool planar = d.section2D;
   const long count = static_cast<long>(p.size());
-  const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
-  const double limit2 = limit * limit;
-  const MinimumImage separationOf(d);
-  const std::array<bool, 3> periodic = d.periodic;
-  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
+  const KickAndDrift kickAndDrift(p, im, model_.domain, dt);
 
   // Half kick with the forces of the last step, then drift; note whether any particle
-  // has moved half the skin since the neighbour list was built.
-  bool stale = false;
+  // has moved half the skin since the neighbour list was built. Done already when the
+  // last step's gather did it (run()).
+  bool stale = driftedStale_;
+  if (!drifted_) {
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
-    // 0), but it moves with the velocity it was given (at rest unless prescribed).
-    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
-    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
-    if (planar) {
-      p.velocity[i].z() = 0.0;
-      p.angularVelocity[i].x() = 0.0;
-      p.angularVelocity[i].y() = 0.0;
-    }
-    const Vec3 move = dt * p.velocity[i];
-    p.position[i] += move;
-    p.displacement[i] += move;
-    for (int k = 0; anyPeriodic && k < 3; ++k) {
-      if (periodic[k]) {
-        const double lo = d.origin[k];
-        const double length = d.size[k];
-        if (p.position[i][k] < lo) {
-          p.position[i][k] += length;
-        } else if (p.position[i][k] >= lo + length) {
-          p.position[i][k] -= length;
-        }
+    for (long li = 0; li < count; ++li) {
+      if (kickAndDrift(static_cast<std::size_t>(li))) {
+        stale = true;
       }
     }
-    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
-      stale = true;
-    }
   }
+  drifted_ = false;
+  driftedStale_ = false;
   controlWalls(model_, timestep_, im.smallestRadius);
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
@@ -853,8 +897,9 @@ void CpuBackend::step()
   } else if (wallsMoved()) {
     rebuildWallContacts(true);
   }
-  // New forces, then the second half kick (in the same pass).
-  computeForces(true, true);
+  // New forces, then the second half kick (in the same pass), and unless this is the
+  // run's last step, the next step's half kick and drift.
+  computeForces(true, true, !last);
   model_.clock.step += 1;
   model_.clock.time += dt;
 }

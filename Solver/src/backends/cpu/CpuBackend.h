@@ -45,13 +45,17 @@ private:
   void decideParallel();
   void buildBondLists();
   void computeBondForces(bool incrementState);
-  void computeForces(bool incrementHistory, bool closingKick);
-  void step();
+  void computeForces(bool incrementHistory, bool closingKick, bool driftNext = false);
+  void step(bool last);
 
   Model& model_;
   ContactModel contactModel_;
   double timestep_ = 0.0;
   ContactState state_;
+  /// run() did the next step's kick and drift in the last gather (and whether that made the
+  /// neighbour list stale): the step starts at the wall control.
+  bool drifted_ = false;
+  bool driftedStale_ = false;
 };
 
 } // namespace dem
