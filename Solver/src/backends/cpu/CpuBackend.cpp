@@ -517,71 +517,6 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
 
   const MinimumImage separationOf(d);
 
-  // 1. Each pair once.
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long k = 0; k < pairs; ++k) {
-    const std::uint32_t i = im.pairI[k];
-    const std::uint32_t j = im.pairJ[k];
-    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
-    const double distance = branch.norm();
-    const double overlap = p.radius[i] + p.radius[j] - distance;
-    if (overlap <= 0.0 || distance == 0.0) {
-      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
-          (rolling && !im.pairRolling[k].isZero(0.0))) {
-        // The contact just ended: clear its force and history (once, not every step).
-        im.pairForce[k].setZero();
-        im.pairTorqueI[k].setZero();
-        im.pairTorqueJ[k].setZero();
-        im.pairNormal[k] = 0.0;
-        im.pairSpring[k].setZero();
-        if (rolling) {
-          im.pairRolling[k].setZero();
-        }
-      }
-      continue;
-    }
-    const Vec3 normal = branch / distance;
-    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
-    const double armJ = p.radius[j] - 0.5 * overlap;
-    // Slip over the step uses the half-step velocities (exact for the displacement
-    // increment); the viscous damping uses the full-step velocities, predicted from the
-    // last forces, so that restitution does not drift with the number of steps per impact.
-    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
-      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
-    const Vec3 predictedVelocity = relativeVelocity +
-      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
-    const double approachSpeed = predictedVelocity.dot(normal);
-    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
-    const double fn = response.force;
-    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-    const Vec3 ft =
-      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
-    Vec3 torqueI = armI * normal.cross(ft);
-    Vec3 torqueJ = armJ * normal.cross(ft);
-    if (rolling) {
-      const PairProperties pair =
-        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
-      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
-      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
-      torqueI += mr;
-      torqueJ -= mr;
-    }
-    im.pairForce[k] = -fn * normal + ft;
-    im.pairTorqueI[k] = torqueI;
-    im.pairTorqueJ[k] = torqueJ;
-    im.pairNormal[k] = fn;
-    if (fn != 0.0) {
-      // Two threads may mark the same particle: both write 1.
-#pragma omp atomic write
-      im.touching[i] = 1;
-#pragma omp atomic write
-      im.touching[j] = 1;
-    }
-  }
-
-  // 2. Bonds, each once (state updated and failure checked only on a real step).
-  computeBondForces(incrementHistory);
-
   // 3. Walls. During a press test the side walls are frictionless (a servo-controlled
   // face must be free to follow the specimen's lateral expansion without shear from it)
   // and the two platens (the walls on the test axis) have the test's Platen Friction.
@@ -658,7 +593,78 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const bool anyExternal = im.externalForce.size() == n; // the membrane's pushes
   bool stale = false; // with driftNext: the next step's drift made the list stale
   const KickAndDrift kickAndDrift(p, im, d, timestep_);
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
+  // 1. Each pair once, 2. each bond once, 4. the gather: one parallel region (the loops
+  // share it, with a barrier after each; each loop is partitioned as before).
+#pragma omp parallel num_threads(im.threads) if (im.parallel)
+  {
+#pragma omp for schedule(static)
+  for (long k = 0; k < pairs; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
+    const double distance = branch.norm();
+    const double overlap = p.radius[i] + p.radius[j] - distance;
+    if (overlap <= 0.0 || distance == 0.0) {
+      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
+          (rolling && !im.pairRolling[k].isZero(0.0))) {
+        // The contact just ended: clear its force and history (once, not every step).
+        im.pairForce[k].setZero();
+        im.pairTorqueI[k].setZero();
+        im.pairTorqueJ[k].setZero();
+        im.pairNormal[k] = 0.0;
+        im.pairSpring[k].setZero();
+        if (rolling) {
+          im.pairRolling[k].setZero();
+        }
+      }
+      continue;
+    }
+    const Vec3 normal = branch / distance;
+    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
+    const double armJ = p.radius[j] - 0.5 * overlap;
+    // Slip over the step uses the half-step velocities (exact for the displacement
+    // increment); the viscous damping uses the full-step velocities, predicted from the
+    // last forces, so that restitution does not drift with the number of steps per impact.
+    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+    const Vec3 predictedVelocity = relativeVelocity +
+      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
+    const double approachSpeed = predictedVelocity.dot(normal);
+    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
+    const double fn = response.force;
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft =
+      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
+    Vec3 torqueI = armI * normal.cross(ft);
+    Vec3 torqueJ = armJ * normal.cross(ft);
+    if (rolling) {
+      const PairProperties pair =
+        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
+      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
+      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
+      torqueI += mr;
+      torqueJ -= mr;
+    }
+    im.pairForce[k] = -fn * normal + ft;
+    im.pairTorqueI[k] = torqueI;
+    im.pairTorqueJ[k] = torqueJ;
+    im.pairNormal[k] = fn;
+    if (fn != 0.0) {
+      // Two threads may mark the same particle: both write 1.
+#pragma omp atomic write
+      im.touching[i] = 1;
+#pragma omp atomic write
+      im.touching[j] = 1;
+    }
+  }
+
+
+  // 2. Bonds, each once (state updated and failure checked only on a real step; a
+  // work-shared loop of this region).
+  computeBondForces(incrementHistory);
+
+  // nowait: the region's end is the barrier (and completes the reduction).
+#pragma omp for schedule(static) reduction(|| : stale) nowait
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     Vec3 force = p.mass[i] * gravity;
@@ -729,6 +735,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
       stale = true;
     }
   }
+  } // end of the parallel region
   drifted_ = driftNext;
   driftedStale_ = stale;
 
@@ -813,7 +820,8 @@ void CpuBackend::computeBondForces(bool incrementState)
   if (count == 0) {
     return;
   }
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  // Work-shared by the threads of computeForces's parallel region (serial outside one).
+#pragma omp for schedule(static)
   for (long lk = 0; lk < count; ++lk) {
     const std::size_t k = static_cast<std::size_t>(lk);
     if (b.broken(k)) {
