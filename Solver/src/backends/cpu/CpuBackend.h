@@ -11,6 +11,10 @@
 // in slot order -> clock. Velocity Verlet; velocity-dependent forces use the half-step
 // velocity. No floating-point atomics, fixed summation order. It steps the Model's own
 // particle arrays in place. SI units throughout.
+// How the loops run: the pair, bond and gather loops of a step share one OpenMP parallel
+// region, and within one run() the gather also does the next step's half kick and drift
+// of the same particle (a particle's kick and drift read only its own state), so a step
+// is one fork/join; the last step of a run() leaves the state of a whole step.
 #pragma once
 
 #include "backends/ContactState.h"
