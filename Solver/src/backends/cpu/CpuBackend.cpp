@@ -49,65 +49,6 @@ private:
 };
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
-
-/// The opening half kick and the drift of one particle: velocity Verlet's first half,
-/// with the periodic wrap. Returns true when the particle has moved half the skin since
-/// the neighbour list was built. A particle's kick and drift read only its own state.
-class KickAndDrift {
-public:
-  KickAndDrift(Particles& p, const ContactState& im, const Domain& d, double dt)
-    : p_(p)
-    , im_(im)
-    , d_(d)
-    , separationOf_(d)
-    , dt_(dt)
-    , half_(0.5 * dt)
-    , planar_(d.section2D)
-    , anyPeriodic_(d.periodic[0] || d.periodic[1] || d.periodic[2])
-  {
-    const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
-    limit2_ = limit * limit;
-  }
-  bool operator()(std::size_t i) const
-  {
-    Particles& p = p_;
-    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
-    // 0), but it moves with the velocity it was given (at rest unless prescribed).
-    p.velocity[i] += (half_ * im_.inverseMass[i]) * p.force[i];
-    p.angularVelocity[i] += (half_ * im_.inverseInertia[i]) * p.torque[i];
-    if (planar_) {
-      p.velocity[i].z() = 0.0;
-      p.angularVelocity[i].x() = 0.0;
-      p.angularVelocity[i].y() = 0.0;
-    }
-    const Vec3 move = dt_ * p.velocity[i];
-    p.position[i] += move;
-    p.displacement[i] += move;
-    for (int k = 0; anyPeriodic_ && k < 3; ++k) {
-      if (d_.periodic[k]) {
-        const double lo = d_.origin[k];
-        const double length = d_.size[k];
-        if (p.position[i][k] < lo) {
-          p.position[i][k] += length;
-        } else if (p.position[i][k] >= lo + length) {
-          p.position[i][k] -= length;
-        }
-      }
-    }
-    return separationOf_(im_.positionAtBuild[i], p.position[i]).squaredNorm() > limit2_;
-  }
-
-private:
-  Particles& p_;
-  const ContactState& im_;
-  const Domain& d_;
-  MinimumImage separationOf_;
-  double dt_;
-  double half_;
-  double limit2_ = 0.0;
-  bool planar_;
-  bool anyPeriodic_;
-};
 } // namespace
 
 CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double timestep)
@@ -184,12 +125,8 @@ std::string CpuBackend::path() const
 
 void CpuBackend::run(std::int64_t steps)
 {
-  // Within one run(), each step's gather also does the next step's half kick and drift,
-  // particle by particle (the same operations on the same values: a particle's kick and
-  // drift read only its own state, which its gather has just finished). The last step of
-  // the run does not, so the state between runs is that of the whole step.
   for (std::int64_t s = 0; s < steps; ++s) {
-    step(s + 1 == steps);
+    step();
   }
 }
 
@@ -499,7 +436,7 @@ bool CpuBackend::wallsMoved() const
 // ---------------------------------------------------------------------------------------
 // Forces
 
-void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool driftNext)
+void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -516,6 +453,71 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   auto massOf = [&](std::size_t i) { return im.inverseMass[i] > 0.0 ? p.mass[i] : infinite; };
 
   const MinimumImage separationOf(d);
+
+  // 1. Each pair once.
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long k = 0; k < pairs; ++k) {
+    const std::uint32_t i = im.pairI[k];
+    const std::uint32_t j = im.pairJ[k];
+    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
+    const double distance = branch.norm();
+    const double overlap = p.radius[i] + p.radius[j] - distance;
+    if (overlap <= 0.0 || distance == 0.0) {
+      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
+          (rolling && !im.pairRolling[k].isZero(0.0))) {
+        // The contact just ended: clear its force and history (once, not every step).
+        im.pairForce[k].setZero();
+        im.pairTorqueI[k].setZero();
+        im.pairTorqueJ[k].setZero();
+        im.pairNormal[k] = 0.0;
+        im.pairSpring[k].setZero();
+        if (rolling) {
+          im.pairRolling[k].setZero();
+        }
+      }
+      continue;
+    }
+    const Vec3 normal = branch / distance;
+    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
+    const double armJ = p.radius[j] - 0.5 * overlap;
+    // Slip over the step uses the half-step velocities (exact for the displacement
+    // increment); the viscous damping uses the full-step velocities, predicted from the
+    // last forces, so that restitution does not drift with the number of steps per impact.
+    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
+      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+    const Vec3 predictedVelocity = relativeVelocity +
+      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
+    const double approachSpeed = predictedVelocity.dot(normal);
+    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
+    const double fn = response.force;
+    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
+    const Vec3 ft =
+      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
+    Vec3 torqueI = armI * normal.cross(ft);
+    Vec3 torqueJ = armJ * normal.cross(ft);
+    if (rolling) {
+      const PairProperties pair =
+        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
+      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
+      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
+      torqueI += mr;
+      torqueJ -= mr;
+    }
+    im.pairForce[k] = -fn * normal + ft;
+    im.pairTorqueI[k] = torqueI;
+    im.pairTorqueJ[k] = torqueJ;
+    im.pairNormal[k] = fn;
+    if (fn != 0.0) {
+      // Two threads may mark the same particle: both write 1.
+#pragma omp atomic write
+      im.touching[i] = 1;
+#pragma omp atomic write
+      im.touching[j] = 1;
+    }
+  }
+
+  // 2. Bonds, each once (state updated and failure checked only on a real step).
+  computeBondForces(incrementHistory);
 
   // 3. Walls. During a press test the side walls are frictionless (a servo-controlled
   // face must be free to follow the specimen's lateral expansion without shear from it)
@@ -591,80 +593,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const long count = static_cast<long>(n);
   const bool anyBonds = !im.bondI.empty();
   const bool anyExternal = im.externalForce.size() == n; // the membrane's pushes
-  bool stale = false; // with driftNext: the next step's drift made the list stale
-  const KickAndDrift kickAndDrift(p, im, d, timestep_);
-  // 1. Each pair once, 2. each bond once, 4. the gather: one parallel region (the loops
-  // share it, with a barrier after each; each loop is partitioned as before).
-#pragma omp parallel num_threads(im.threads) if (im.parallel)
-  {
-#pragma omp for schedule(static)
-  for (long k = 0; k < pairs; ++k) {
-    const std::uint32_t i = im.pairI[k];
-    const std::uint32_t j = im.pairJ[k];
-    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
-    const double distance = branch.norm();
-    const double overlap = p.radius[i] + p.radius[j] - distance;
-    if (overlap <= 0.0 || distance == 0.0) {
-      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
-          (rolling && !im.pairRolling[k].isZero(0.0))) {
-        // The contact just ended: clear its force and history (once, not every step).
-        im.pairForce[k].setZero();
-        im.pairTorqueI[k].setZero();
-        im.pairTorqueJ[k].setZero();
-        im.pairNormal[k] = 0.0;
-        im.pairSpring[k].setZero();
-        if (rolling) {
-          im.pairRolling[k].setZero();
-        }
-      }
-      continue;
-    }
-    const Vec3 normal = branch / distance;
-    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
-    const double armJ = p.radius[j] - 0.5 * overlap;
-    // Slip over the step uses the half-step velocities (exact for the displacement
-    // increment); the viscous damping uses the full-step velocities, predicted from the
-    // last forces, so that restitution does not drift with the number of steps per impact.
-    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
-      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
-    const Vec3 predictedVelocity = relativeVelocity +
-      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
-    const double approachSpeed = predictedVelocity.dot(normal);
-    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
-    const double fn = response.force;
-    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-    const Vec3 ft =
-      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
-    Vec3 torqueI = armI * normal.cross(ft);
-    Vec3 torqueJ = armJ * normal.cross(ft);
-    if (rolling) {
-      const PairProperties pair =
-        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
-      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
-      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
-      torqueI += mr;
-      torqueJ -= mr;
-    }
-    im.pairForce[k] = -fn * normal + ft;
-    im.pairTorqueI[k] = torqueI;
-    im.pairTorqueJ[k] = torqueJ;
-    im.pairNormal[k] = fn;
-    if (fn != 0.0) {
-      // Two threads may mark the same particle: both write 1.
-#pragma omp atomic write
-      im.touching[i] = 1;
-#pragma omp atomic write
-      im.touching[j] = 1;
-    }
-  }
-
-
-  // 2. Bonds, each once (state updated and failure checked only on a real step; a
-  // work-shared loop of this region).
-  computeBondForces(incrementHistory);
-
-  // nowait: the region's end is the barrier (and completes the reduction).
-#pragma omp for schedule(static) reduction(|| : stale) nowait
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     Vec3 force = p.mass[i] * gravity;
@@ -731,13 +660,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
         p.angularVelocity[i].y() = 0.0;
       }
     }
-    if (driftNext && kickAndDrift(i)) {
-      stale = true;
-    }
   }
-  } // end of the parallel region
-  drifted_ = driftNext;
-  driftedStale_ = stale;
 
   // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
   // wall's sum runs in slot order (deterministic).
@@ -820,8 +743,7 @@ void CpuBackend::computeBondForces(bool incrementState)
   if (count == 0) {
     return;
   }
-  // Work-shared by the threads of computeForces's parallel region (serial outside one).
-#pragma omp for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long lk = 0; lk < count; ++lk) {
     const std::size_t k = static_cast<std::size_t>(lk);
     if (b.broken(k)) {
@@ -872,28 +794,54 @@ void CpuBackend::computeBondForces(bool incrementState)
 // ---------------------------------------------------------------------------------------
 // Stepping
 
-void CpuBackend::step(bool last)
+void CpuBackend::step()
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
+  const Domain& d = model_.domain;
   const double dt = timestep_;
+  const double half = 0.5 * dt;
+  const bool planar = d.section2D;
   const long count = static_cast<long>(p.size());
-  const KickAndDrift kickAndDrift(p, im, model_.domain, dt);
+  const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+  const double limit2 = limit * limit;
+  const MinimumImage separationOf(d);
+  const std::array<bool, 3> periodic = d.periodic;
+  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
 
   // Half kick with the forces of the last step, then drift; note whether any particle
-  // has moved half the skin since the neighbour list was built. Done already when the
-  // last step's gather did it (run()).
-  bool stale = driftedStale_;
-  if (!drifted_) {
+  // has moved half the skin since the neighbour list was built.
+  bool stale = false;
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-    for (long li = 0; li < count; ++li) {
-      if (kickAndDrift(static_cast<std::size_t>(li))) {
-        stale = true;
+  for (long li = 0; li < count; ++li) {
+    const std::size_t i = static_cast<std::size_t>(li);
+    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+    // 0), but it moves with the velocity it was given (at rest unless prescribed).
+    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
+    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
+    if (planar) {
+      p.velocity[i].z() = 0.0;
+      p.angularVelocity[i].x() = 0.0;
+      p.angularVelocity[i].y() = 0.0;
+    }
+    const Vec3 move = dt * p.velocity[i];
+    p.position[i] += move;
+    p.displacement[i] += move;
+    for (int k = 0; anyPeriodic && k < 3; ++k) {
+      if (periodic[k]) {
+        const double lo = d.origin[k];
+        const double length = d.size[k];
+        if (p.position[i][k] < lo) {
+          p.position[i][k] += length;
+        } else if (p.position[i][k] >= lo + length) {
+          p.position[i][k] -= length;
+        }
       }
     }
+    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+      stale = true;
+    }
   }
-  drifted_ = false;
-  driftedStale_ = false;
   controlWalls(model_, timestep_, im.smallestRadius);
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
@@ -905,9 +853,8 @@ void CpuBackend::step(bool last)
   } else if (wallsMoved()) {
     rebuildWallContacts(true);
   }
-  // New forces, then the second half kick (in the same pass), and unless this is the
-  // run's last step, the next step's half kick and drift.
-  computeForces(true, true, !last);
+  // New forces, then the second half kick (in the same pass).
+  computeForces(true, true);
   model_.clock.step += 1;
   model_.clock.time += dt;
 }

@@ -11,10 +11,6 @@
 // in slot order -> clock. Velocity Verlet; velocity-dependent forces use the half-step
 // velocity. No floating-point atomics, fixed summation order. It steps the Model's own
 // particle arrays in place. SI units throughout.
-// How the loops run: the pair, bond and gather loops of a step share one OpenMP parallel
-// region, and within one run() the gather also does the next step's half kick and drift
-// of the same particle (a particle's kick and drift read only its own state), so a step
-// is one fork/join; the last step of a run() leaves the state of a whole step.
 #pragma once
 
 #include "backends/ContactState.h"
@@ -49,17 +45,13 @@ private:
   void decideParallel();
   void buildBondLists();
   void computeBondForces(bool incrementState);
-  void computeForces(bool incrementHistory, bool closingKick, bool driftNext = false);
-  void step(bool last);
+  void computeForces(bool incrementHistory, bool closingKick);
+  void step();
 
   Model& model_;
   ContactModel contactModel_;
   double timestep_ = 0.0;
   ContactState state_;
-  /// run() did the next step's kick and drift in the last gather (and whether that made the
-  /// neighbour list stale): the step starts at the wall control.
-  bool drifted_ = false;
-  bool driftedStale_ = false;
 };
 
 } // namespace dem
