@@ -896,6 +896,10 @@ void Simulation::exportContacts()
     std::int64_t a, b;
     Vec3 spring, roll;
   };
+  const auto before = [](const Entry& x, const Entry& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; };
+  // The keys (idA, idB) are unique, so any sort gives the same rows. The pairs come in
+  // slot order, which is id order when the ids rise with the slots (the common case: then
+  // no sort); the wall entries are sorted on their own and merged in.
   std::vector<Entry> entries;
   for (std::size_t k = 0; k < im.pairI.size(); ++k) {
     const Vec3& s = im.pairSpring[k];
@@ -912,6 +916,10 @@ void Simulation::exportContacts()
       entries.push_back({ idJ, idI, -s, -r });
     }
   }
+  if (!std::is_sorted(entries.begin(), entries.end(), before)) {
+    std::sort(entries.begin(), entries.end(), before);
+  }
+  const std::size_t pairEntries = entries.size();
   for (std::size_t e = 0; e < im.wallSlot.size(); ++e) {
     const Vec3& s = im.wallSpring[e];
     const Vec3 r = rolling ? im.wallRolling[e] : Vec3::Zero();
@@ -920,10 +928,19 @@ void Simulation::exportContacts()
     }
     entries.push_back({ p.id[im.wallSlot[e]], wallPartnerId(im.wallIndex[e]), s, r });
   }
-  std::sort(entries.begin(), entries.end(),
-    [](const Entry& x, const Entry& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  if (entries.size() > pairEntries) {
+    const auto middle = entries.begin() + static_cast<std::ptrdiff_t>(pairEntries);
+    std::sort(middle, entries.end(), before);
+    std::inplace_merge(entries.begin(), middle, entries.end(), before);
+  }
   ContactHistory& h = model_.contacts;
   h.clear();
+  h.idA.reserve(entries.size());
+  h.idB.reserve(entries.size());
+  h.shearSpring.reserve(entries.size());
+  if (rolling) {
+    h.rollingSpring.reserve(entries.size());
+  }
   for (const Entry& e : entries) {
     h.idA.push_back(e.a);
     h.idB.push_back(e.b);

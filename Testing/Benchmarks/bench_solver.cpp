@@ -27,7 +27,17 @@
 //   rockdem_bench_solver --sweep [--csv FILE] [--sweep-particles 5000] [--safeties 0.05,0.1,...]
 //   rockdem_bench_solver --write-pack FILE --pack poly --sizes 10000
 //   rockdem_bench_solver --stream [--threads 1,2] [--repeat 5]
+//   rockdem_bench_solver --read-pack FILE [--steps 2000] [--pre N] [--batch B] [--threads 1,2]
+//                        [--repeat R] [--damping 0]
 //
+// --read-pack times a pack file (scripts/liggghts_deck.py's format: "# key value" header
+// with box, timestep and material, then "id type diameter density x y z" rows), such as the
+// peers' settled mono pack of scripts/benchmark_mono_pack.sh, with the settings of the
+// user's path there (scripts/time_pack_pvpython.py: walls on the pack's box, gravity -z,
+// Settling Damping 0 unless --damping, Timestep Safety 0.2, Requested Timestep = the pack's):
+// --pre steps first (default: --steps; DEM Load Test's first, untimed frame), then --steps
+// timed, in advance() calls of --batch steps (default 100, DEM Load Test's Steps per
+// Batch; 0: one call). Prints the same columns as the throughput table.
 // --stream measures the machine's memory bandwidth (a STREAM-like triad over 768 MiB), the
 // bound on the step's memory traffic (Documentation/Benchmarks-Solver.md section 5).
 // --quick (the ctest smoke test, ~1 s): 2000 particles x 50 steps per pack and thread
@@ -70,6 +80,7 @@
 #include <fstream>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -118,6 +129,10 @@ struct Options {
   std::string csv;
   std::string writePack;
   std::string pack = "poly"; // for --write-pack
+  std::string readPack;        // --read-pack FILE
+  long pre = -1;               // --pre: untimed steps before the timed ones (-1: --steps)
+  long batch = 100;            // --batch: steps per advance() call (0: all in one)
+  bool dampingGiven = false;
   long sweepParticles = 5000;
   std::vector<double> safeties{ 0.02, 0.035, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5,
                                 0.7, 1.0, 1.5, 2.0, 3.0 };
@@ -131,8 +146,9 @@ struct Options {
     "          [--damping A] [--restitution E] [--sort] [--repeat R] [--csv FILE] [--quick]\n"
     "       %s --sweep [--safeties s1,s2,...] [--sweep-particles N] [--csv FILE]\n"
     "       %s --stream [--threads 1,2] [--repeat R]\n"
-    "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--restitution E] [--sort]\n",
-    argv0, argv0, argv0, argv0);
+    "       %s --write-pack FILE [--pack mono|poly|lattice] [--sizes N] [--restitution E] [--sort]\n"
+    "       %s --read-pack FILE [--steps N] [--pre N] [--batch B] [--threads 1,2] [--repeat R] [--damping A]\n",
+    argv0, argv0, argv0, argv0, argv0);
   std::exit(2);
 }
 
@@ -158,6 +174,7 @@ Options parse(int argc, char** argv)
       gRestitution = std::atof(argv[++i]);
     } else if (a == "--damping" && hasValue) {
       o.damping = std::atof(argv[++i]);
+      o.dampingGiven = true;
     } else if (a == "--repeat" && hasValue) {
       o.repeat = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--threshold" && hasValue) {
@@ -177,6 +194,12 @@ Options parse(int argc, char** argv)
       o.writePack = argv[++i];
     } else if (a == "--sweep-particles" && hasValue) {
       o.sweepParticles = std::atol(argv[++i]);
+    } else if (a == "--read-pack" && hasValue) {
+      o.readPack = argv[++i];
+    } else if (a == "--pre" && hasValue) {
+      o.pre = std::atol(argv[++i]);
+    } else if (a == "--batch" && hasValue) {
+      o.batch = std::atol(argv[++i]);
     } else if (a == "--safeties" && hasValue) {
       o.safeties = rockdem_bench::parseList<double>(argv[++i]);
     } else {
@@ -838,6 +861,159 @@ int runStream(const Options& o)
   return 0;
 }
 
+// ---------------------------------------------------------------------------------------
+// A pack file (--read-pack), with the settings of scripts/time_pack_pvpython.py
+
+dem::Model readPackModel(const std::string& path, double& timestep)
+{
+  std::ifstream in(path);
+  if (!in) {
+    throw std::runtime_error("cannot read " + path);
+  }
+  dem::Model m;
+  setMaterial(m);
+  std::vector<double> box;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      continue;
+    }
+    std::istringstream words(line);
+    if (line[0] == '#') {
+      std::string hash, key;
+      words >> hash >> key;
+      double v = 0.0;
+      std::vector<double> values;
+      while (words >> v) {
+        values.push_back(v);
+      }
+      if (values.empty()) {
+        continue;
+      }
+      if (key == "box") {
+        box = values;
+      } else if (key == "timestep") {
+        timestep = values[0];
+      } else if (key == "density") {
+        m.material.density = values[0];
+      } else if (key == "youngs_modulus") {
+        m.material.youngsModulus = values[0];
+      } else if (key == "poissons_ratio") {
+        m.material.poissonsRatio = values[0];
+      } else if (key == "restitution") {
+        m.material.restitution = values[0];
+      } else if (key == "friction") {
+        m.material.friction = values[0];
+      } else if (key == "gravity") {
+        m.gravity = dem::Vec3(0.0, 0.0, -values[0]);
+      }
+      continue;
+    }
+    double id = 0.0, type = 0.0, diameter = 0.0, density = 0.0, x = 0.0, y = 0.0, z = 0.0;
+    if (words >> id >> type >> diameter >> density >> x >> y >> z) {
+      m.particles.append(dem::Vec3(x, y, z), 0.5 * diameter, m.nextId++);
+    }
+  }
+  if (box.size() != 6 || m.particles.size() == 0) {
+    throw std::runtime_error(path + ": no '# box' line or no particles");
+  }
+  m.domain.origin = dem::Vec3(box[0], box[2], box[4]);
+  m.domain.size = dem::Vec3(box[1] - box[0], box[3] - box[2], box[5] - box[4]);
+  dem::updateMassProperties(m);
+  return m;
+}
+
+/// The timed steps of --read-pack, in batches (out of line: callgrind's --toggle-collect=timedAdvance*
+/// counts these steps and not the untimed ones before them).
+__attribute__((noinline)) void timedAdvance(dem::Simulation& sim, long total, long batch)
+{
+  const long b = batch > 0 ? batch : total;
+  for (long done = 0; done < total; done += b) {
+    sim.advance(std::min(b, total - done));
+  }
+}
+
+/// FNV-1a over the bits of the particles' positions, velocities, spins and forces: equal
+/// hashes say two runs ended bit for bit the same.
+std::uint64_t stateHash(const dem::Particles& p)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const std::vector<dem::Vec3>& v) {
+    for (const dem::Vec3& x : v) {
+      for (int c = 0; c < 3; ++c) {
+        std::uint64_t bits = 0;
+        const double value = x[c];
+        std::memcpy(&bits, &value, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+      }
+    }
+  };
+  add(p.position);
+  add(p.velocity);
+  add(p.angularVelocity);
+  add(p.force);
+  add(p.torque);
+  return h;
+}
+
+int runReadPack(const Options& o)
+{
+  std::vector<int> threadList = o.threads;
+  if (threadList.empty()) {
+    threadList = { 1, coreCount() };
+  }
+  const long steps = o.steps > 0 ? o.steps : 2000;
+  const long pre = o.pre >= 0 ? o.pre : steps;
+  std::printf("RockDEM solver on %s: %ld untimed steps, then %ld timed, advance() in batches of %ld; "
+              "damping %.2f; %d cores\n", o.readPack.c_str(), pre, steps, o.batch,
+              o.dampingGiven ? o.damping : 0.0, coreCount());
+  std::printf("%-8s %7s %-22s %6s %10s %8s %12s %9s %12s %7s\n", "N", "threads", "path", "steps",
+              "dt(s)", "time(s)", "p-steps/s", "contacts", "KE(J)", "others");
+  for (int threads : threadList) {
+    double best = 0.0, others = 0.0, timestep = 0.0, kinetic = 0.0, n = 0.0;
+    std::size_t contacts = 0;
+    std::string path;
+    std::uint64_t hash = 0;
+    for (int rep = 0; rep < o.repeat; ++rep) {
+      double packTimestep = 0.0;
+      dem::Model model = readPackModel(o.readPack, packTimestep);
+      model.solver.settlingDamping = o.dampingGiven ? o.damping : 0.0;
+      model.solver.timestepSafety = 0.2;
+      model.solver.requestedTimestep = packTimestep;
+      model.solver.threads = threads;
+      if (o.threshold >= 0) {
+        model.solver.parallelThreshold = o.threshold;
+      }
+      n = static_cast<double>(model.particles.size());
+      dem::Simulation sim(model, dem::SolverDevice::CPU);
+      const long b = o.batch > 0 ? o.batch : pre;
+      for (long done = 0; done < pre; done += b) {
+        sim.advance(std::min(b, pre - done));
+      }
+      const auto cpu0 = cpuSeconds();
+      const auto start = std::chrono::steady_clock::now();
+      timedAdvance(sim, steps, o.batch);
+      const double elapsed = secondsSince(start);
+      const auto cpu1 = cpuSeconds();
+      if (rep == 0 || elapsed < best) {
+        best = elapsed;
+        others = std::max(0.0, ((cpu1.first - cpu0.first) - (cpu1.second - cpu0.second)) / elapsed);
+      }
+      contacts = sim.diagnostics().contacts;
+      kinetic = sim.diagnostics().kineticEnergy;
+      path = sim.path();
+      timestep = sim.timestep();
+      hash = stateHash(model.particles);
+    }
+    std::printf("%-8.0f %7d %-22s %6ld %10.4g %8.3f %12.4g %9zu %12.6g %7.2f\n", n, threads,
+                path.substr(0, 22).c_str(), steps, timestep, best, n * static_cast<double>(steps) / best,
+                contacts, kinetic, others);
+    std::printf("  state hash %016llx; path: %s\n", static_cast<unsigned long long>(hash), path.c_str());
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv)
 {
   Options o = parse(argc, argv);
@@ -847,6 +1023,9 @@ int main(int argc, char** argv)
     }
     if (!o.writePack.empty()) {
       return writePack(o);
+    }
+    if (!o.readPack.empty()) {
+      return runReadPack(o);
     }
     if (o.sweep) {
       return runSweep(o);
