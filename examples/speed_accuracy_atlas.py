@@ -746,7 +746,9 @@ def resolution_stats(cfg, per):
         recs = [per[(n, s)] for s in c["seeds"] if (n, s) in per]
         if not recs:
             continue
-        st = {"n": n, "across": mean_sd([r.get("across", math.nan) for r in recs])[0]}
+        st = {"n": n, "across": mean_sd([r.get("across", math.nan) for r in recs])[0],
+              "porosity": mean_sd([r.get("porosity", math.nan) for r in recs])[0],
+              "coordination": mean_sd([r.get("coordination", math.nan) for r in recs])[0]}
         for key, _, _, _, _ in RES_PROPS:
             st[key] = mean_sd([r.get(key, math.nan) for r in recs])
             st[key + "_values"] = [r.get(key, math.nan) for r in recs if math.isfinite(r.get(key, math.nan))]
@@ -840,13 +842,14 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
     for n in sizes:
         st = stats[n]
         seeds_ucs = [s for s in c["seeds"] if math.isfinite(per.get((n, s), {}).get("ucs", math.nan))]
-        rows.append(["%d" % n, "%.1f" % st["across"], ",".join("%d" % s for s in seeds_ucs)]
+        rows.append(["%d" % n, "%.1f" % st["across"], ",".join("%d" % s for s in seeds_ucs),
+                     "%.3f / %.2f" % (st["porosity"], st["coordination"])]
                     + [cell(st, key, scale, fmt) for key, _, scale, _, fmt in RES_PROPS]
                     + ["%.1f / %.1f / %s" % (st["sec_ucs"], st["sec_tension"],
                                              "%.1f" % st["sec_phi"] if math.isfinite(st["sec_phi"]) else "-"),
                        "%.3g / %.3g / %s" % (st["ps_ucs"], st["ps_tension"],
                                              "%.3g" % st["ps_phi"] if math.isfinite(st["ps_phi"]) else "-")])
-    body = table(["grains", "across", "seeds", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
+    body = table(["grains", "across", "seeds", "porosity / bonded coordination", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
                   "seconds per specimen: unconfined / tension / triaxial", "particle-steps: unconfined / tension / "
                   "triaxial"], rows)
     # Every specimen (seed) on its own line.
