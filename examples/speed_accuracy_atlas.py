@@ -748,7 +748,8 @@ def resolution_stats(cfg, per):
             continue
         st = {"n": n, "across": mean_sd([r.get("across", math.nan) for r in recs])[0],
               "porosity": mean_sd([r.get("porosity", math.nan) for r in recs])[0],
-              "coordination": mean_sd([r.get("coordination", math.nan) for r in recs])[0]}
+              "coordination": mean_sd([r.get("coordination", math.nan) for r in recs])[0],
+              "rate_factor": mean_sd([r.get("rate_factor", math.nan) for r in recs])[0]}
         for key, _, _, _, _ in RES_PROPS:
             st[key] = mean_sd([r.get(key, math.nan) for r in recs])
             st[key + "_values"] = [r.get(key, math.nan) for r in recs if math.isfinite(r.get(key, math.nan))]
@@ -843,13 +844,14 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
         st = stats[n]
         seeds_ucs = [s for s in c["seeds"] if math.isfinite(per.get((n, s), {}).get("ucs", math.nan))]
         rows.append(["%d" % n, "%.1f" % st["across"], ",".join("%d" % s for s in seeds_ucs),
-                     "%.3f / %.2f" % (st["porosity"], st["coordination"])]
+                     "%.3f / %.2f" % (st["porosity"], st["coordination"]), "%.1f" % st["rate_factor"]]
                     + [cell(st, key, scale, fmt) for key, _, scale, _, fmt in RES_PROPS]
                     + ["%.1f / %.1f / %s" % (st["sec_ucs"], st["sec_tension"],
                                              "%.1f" % st["sec_phi"] if math.isfinite(st["sec_phi"]) else "-"),
                        "%.3g / %.3g / %s" % (st["ps_ucs"], st["ps_tension"],
                                              "%.3g" % st["ps_phi"] if math.isfinite(st["ps_phi"]) else "-")])
-    body = table(["grains", "across", "seeds", "porosity / bonded coordination", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
+    body = table(["grains", "across", "seeds", "porosity / bonded coordination",
+                  "compression strain rate / Suggested Strain Rate", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
                   "seconds per specimen: unconfined / tension / triaxial", "particle-steps: unconfined / tension / "
                   "triaxial"], rows)
     # Every specimen (seed) on its own line.
@@ -882,7 +884,7 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
             ("from " + name(seed_from)) if seed_from else "at no smaller size"))
     loads = sorted(r["load"] for r in done.values())
     walls = sum(r["wall"] for r in done.values())
-    first = next(iter(done.values()))
+    compression = [r for (_, _, k), r in done.items() if k != "tension"]
     kinds = {"ucs_triaxial": "unconfined and triaxial", "ucs": "unconfined", "tension": "tension"}
     commands = "; ".join("%s: `rockdem_bench_rock %s`" % (
         kinds[k], " ".join(resolution_args(c, "N", "S", k))) for k in
@@ -892,13 +894,16 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
         runs_by_kind.setdefault(k, []).append("%d/%d" % (n, s))
     text = ("Commands (N grains, seed S): %s (%s; load average %.2f-%.2f before the runs, %d runs, %.0f s wall in all; "
             "each run's command, load and output in `atlas_runs/resolution_N_sS_KIND.txt`). Runs made (grains/seed): %s. "
-            "Timestep %.4g s, strain rate %.3g 1/s = %.3g x the Suggested Strain Rate.\n\n"
+            "Compression tests: timestep %.3g-%.3g s (the smallest grain is smaller in a larger pack), strain rate "
+            "%.3g-%.3g 1/s = %.3g-%.3g x the Suggested Strain Rate.\n\n"
             "Mean over the seeds +- their standard deviation, and (in brackets) the difference of the mean from the "
             "finest size's (the reference) +- its standard error (from both sizes' seed spreads):\n\n%s\n\n"
             "Within 5 %% of the finest size (the mean over the seeds; each seed on its own):\n\n%s\n\n%s\n\n%s") % (
         commands, machine(), loads[0], loads[-1], len(done), walls,
         "; ".join("%s %s" % (kinds[k], ", ".join(v)) for k, v in runs_by_kind.items()),
-        first["timestep"], first["rate"], first["rate_factor"], body, "\n".join("- " + line for line in conv),
+        min(comp["timestep"] for comp in compression), max(comp["timestep"] for comp in compression),
+        min(comp["rate"] for comp in compression), max(comp["rate"] for comp in compression),
+        min(comp["rate_factor"] for comp in compression), max(comp["rate_factor"] for comp in compression), body, "\n".join("- " + line for line in conv),
         "Each specimen:\n\n" + seed_table + "".join(
             "\n\nThe unconfined test of %d grains, seed %d, ran twice (alone and before the triaxial tests): UCS %.4g "
             "and %.4g Pa (%s)." % (n, seed, a, b, "the same" if a == b else "NOT the same")
