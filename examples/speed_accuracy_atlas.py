@@ -796,6 +796,9 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
         if len(ns) < 1:
             continue
         ref = stats[ns[-1]][key][0]
+        if ns[-1] != sizes[-1] or stats[ns[-1]][key][2] < len(c["seeds"]):
+            label = "%s (against %d grains, %d seed%s)" % (label, ns[-1], stats[ns[-1]][key][2],
+                                                          "" if stats[ns[-1]][key][2] == 1 else "s")
         err = [pct(stats[n][key][0], ref) for n in ns]
         bar = [100.0 * stats[n][key][1] / abs(ref) if math.isfinite(stats[n][key][1]) else 0.0 for n in ns]
         across = [stats[n]["across"] for n in ns]
