@@ -922,6 +922,79 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
 
 
 
+# The strain-rate effect against the seed spread (SpeedAccuracy.md "Strain rate": is the rate effect
+# separable from the path noise at a larger size?): the resolution sweep's 700-grain specimens (7 across,
+# seeds 1-3) loaded at 4 x and 1 x the Suggested Strain Rate, beside their unconfined test of the sweep
+# (1e-7 per step). Each specimen is the same at every rate: the differences are paired.
+FULL["rate_seeds"] = {"particles": 700, "seeds": [1, 2, 3], "factors": [4, 1], "max_strain": 0.006}
+
+
+def rate_seeds_section(bench, cfg, work, out, new_runs=True):
+    c = cfg["rate_seeds"]
+    r = cfg["resolution"]
+    rows, notes = [], []
+    for seed in c["seeds"]:
+        args = ["--particles", str(c["particles"]), "--seed", str(seed), "--threads", "1", "--tests", "rates",
+                "--rate-factors", ",".join("%g" % f for f in c["factors"])] + ROCK[:-2] + ["--max-strain",
+                                                                                          "%g" % c["max_strain"]]
+        name = "rate_seeds_%d_s%d" % (c["particles"], seed)
+        path = os.path.join(work, name + ".txt")
+        if not os.path.exists(path) and not new_runs:
+            continue  # not run (the clock)
+        sweep, note = run(bench, args, work, name, True)
+        base = os.path.join(work, "resolution_%d_s%d_ucs_triaxial.txt" % (c["particles"], seed))
+        with open(base) as f:
+            b = parse_resolution(f.read().splitlines())[0]
+        rows.append({"seed": seed, "sweep": sweep, "base": b})
+        notes.append(note)
+    if not rows:
+        return "Not run.", [], []
+    slow = min(c["factors"])
+
+    def at(row, factor):
+        return next(x for x in row["sweep"] if x["factor"] == factor)
+    lines = []
+    diffs = {f: [] for f in c["factors"] if f != slow}
+    diffs["sweep"] = []
+    ediffs = {k: [] for k in diffs}
+    for row in rows:
+        ref = at(row, slow)
+        cells = ["%d" % row["seed"], "%.3f (%.1f x, %d steps)" % (row["base"]["ucs"] / 1e6, row["base"]["rate_factor"],
+                                                                  row["base"]["ucs_steps"])]
+        d = pct(row["base"]["ucs"], ref["ucs"])
+        diffs["sweep"].append(d)
+        ediffs["sweep"].append(pct(row["base"]["E"], ref["E"]))
+        for f in sorted(c["factors"], reverse=True):
+            x = at(row, f)
+            cells.append("%.3f (%d steps)" % (x["ucs"] / 1e6, x["steps"]))
+            if f != slow:
+                diffs[f].append(pct(x["ucs"], ref["ucs"]))
+                ediffs[f].append(pct(x["E"], ref["E"]))
+        cells += ["%+.1f %%" % diffs[f][-1] for f in sorted(c["factors"], reverse=True) if f != slow]
+        cells.append("%+.1f %%" % d)
+        cells.append("%.2f / %.2f / %.2f" % (row["base"]["E"] / 1e9, at(row, max(c["factors"]))["E"] / 1e9,
+                                             ref["E"] / 1e9))
+        lines.append(cells)
+    header = (["seed", "UCS (MPa) at the sweep's 1e-7 per step"]
+              + ["UCS (MPa) at %g x" % f for f in sorted(c["factors"], reverse=True)]
+              + ["%g x vs %g x" % (f, slow) for f in sorted(c["factors"], reverse=True) if f != slow]
+              + ["1e-7 per step vs %g x" % slow, "E (GPa): 1e-7 per step / %g x / %g x" % (max(c["factors"]), slow)])
+    summary = []
+    for k in diffs:
+        m, sd, n = mean_sd(diffs[k])
+        em, esd, _ = mean_sd(ediffs[k])
+        summary.append("%s against %g x: UCS %+.1f %% +- %.1f %% (mean +- standard deviation of the %d paired "
+                       "differences), E %+.1f %% +- %.1f %%" % ("the sweep's 1e-7 per step" if k == "sweep" else
+                                                              "%g x" % k, slow, m, sd, n, em, esd))
+    text = ("Commands: `rockdem_bench_rock %s` with `--seed` %s (%s; %s), beside the resolution sweep's "
+            "unconfined test of the same specimens.\n\n%s\n\n%s.") % (
+        " ".join(["--particles", str(c["particles"]), "--seed", "S", "--threads", "1", "--tests", "rates",
+                  "--rate-factors", ",".join("%g" % f for f in c["factors"])] + ROCK[:-2]
+                 + ["--max-strain", "%g" % c["max_strain"]]),
+        ", ".join("%d" % row["seed"] for row in rows), machine(), "; ".join(notes), table(header, lines),
+        "; ".join(summary))
+    return text, [{"d": v} for k in diffs for v in diffs[k]], []
+
 
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
@@ -961,7 +1034,8 @@ def main():
     makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section,
               "stability": stability_section, "timestep_bonded": timestep_bonded_section,
               "contact_law": contact_law_section,
-              "resolution": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs)}
+              "resolution": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs),
+              "rate_seeds": lambda *a: rate_seeds_section(*a, new_runs=not o.no_new_runs)}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text
