@@ -34,6 +34,8 @@ finest size's, the cost of each test in seconds and particle-steps (images/speed
 and where each property converges within 5 %. The runs go in an order that keeps the most useful
 ones when the sweep is cut short; --no-new-runs writes the section from the runs already in WORK and
 names the missing ones.
+Rate against seeds (rate_seeds, not in the default list): the resolution sweep's 700-grain specimens at
+4 x and 1 x the Suggested Strain Rate beside their sweep test (the rate effect, paired by seed).
 
 --quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, resolution on
 120 and 250 grains with two seeds at 4e-7 strain per step, into
