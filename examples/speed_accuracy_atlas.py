@@ -27,8 +27,18 @@ Contact law (contact_law): the same rock built and tested with Hertz-Mindlin and
 contacts (bench --contact-law, set before Compact Elements), the linear one at the same strain
 per step and at the same strain rate: porosity, bonds, UCS, E, nu, sigma_t, broken at the peak,
 the DFN, steps, particle-steps and run time.
+Resolution (resolution): the same rock at 250-8,000 grains (about 5-16 mean diameters across the
+width), pack seeds 1-3: UCS, E, nu (unconfined), sigma_t (direct tension) and the friction angle
+(triaxial peaks at 10 and 20 % of the UCS with the UCS), each size's mean and seed spread against the
+finest size's, the cost of each test in seconds and particle-steps (images/speed_accuracy_resolution.png),
+and where each property converges within 5 %. The runs go in an order that keeps the most useful
+ones when the sweep is cut short; --no-new-runs writes the section from the runs already in WORK and
+names the missing ones.
+Rate against seeds (rate_seeds, not in the default list): the resolution sweep's 700-grain specimens at
+4 x and 1 x the Suggested Strain Rate beside their sweep test (the rate effect, paired by seed).
 
---quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, into
+--quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, resolution on
+120 and 250 grains with two seeds at 4e-7 strain per step, into
 OUT (a scratch folder); asserts that the charts and tables were written and every number in
 them is finite. Each bench run's output is kept in WORK (default OUT/atlas_runs) with its
 command on the first line and is reused when the command is the same (delete it to rerun;
@@ -566,6 +576,428 @@ def contact_law_section(bench, cfg, work, out):
     return text, [{k: v for k, v in r.items() if math.isfinite(v)} for _, _, r in runs], []
 
 
+
+# The resolution sweep (issue 17 "Resolution"): the same rock at five specimen sizes (grains across
+# the width: about 5, 7, 9, 12 and 16), three pack seeds each. Per size and seed two bench runs, each
+# building the same specimen from the seed: "ucs" (unconfined, to 70 % of the peak; with "triaxial"
+# also two triaxial peaks at 10 and 20 % of that UCS, for the friction angle) and "tension" (direct
+# tension). The runs are made in the order of RESOLUTION["order"] (the cheap sizes first, then the
+# finest size's unconfined and tension tests, then the triaxial tests of the larger sizes), so that
+# a sweep cut short by the clock keeps the most useful runs; --no-new-runs writes the table from the
+# runs in WORK and lists the missing ones.
+FULL["resolution"] = {
+    "sizes": [250, 700, 1500, 3500, 8000], "seeds": [1, 2, 3], "confining": [0.1, 0.2],
+    "strain_per_step": 1e-7, "tension_strain_per_step": 1e-8, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
+    "tension_max_strain": 0.0003,
+    # (size, seed, kind): "ucs_triaxial" replaces "ucs" where it is planned (the same unconfined test).
+    "order": ([(n, s, k) for n in (250, 700, 1500) for s in (1, 2, 3) for k in ("ucs_triaxial", "tension")]
+              + [(8000, s, k) for s in (1, 2, 3) for k in ("ucs", "tension")]
+              + [(3500, s, k) for s in (1, 2, 3) for k in ("ucs_triaxial", "tension")]
+              + [(8000, s, "ucs_triaxial") for s in (1, 2, 3)])}
+QUICK["resolution"] = {
+    "sizes": [120, 250], "seeds": [1, 2], "confining": [0.2],
+    "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
+    "tension_max_strain": 0.0004,
+    "order": [(n, s, k) for n in (120, 250) for s in (1, 2) for k in ("ucs_triaxial", "tension")]}
+RES_PATTERNS = {
+    "across": r"^specimen: \d+ particles, .* (\S+) mean diameters across",
+    "particles": r"^specimen: (\d+) particles",
+    "porosity": r"Compact Elements: porosity \S+ -> (\S+) ",
+    "compact_steps": r"\d+ stages, (\d+) steps\.",
+    "bonds": r"installed (\d+) bonds",
+    "coordination": r"bonded coordination (\S+) ",
+    "ucs": r"^UCS (\S+) Pa at strain",
+    "peak_strain": r"^UCS \S+ Pa at strain (\S+);",
+    "E": r"^UCS .*; E (\S+) Pa;",
+    "nu": r"^UCS .*; nu (\S+);",
+    "ucs_steps": r"^UCS .*\((\d+) steps, \S+ s\)",
+    "ucs_seconds": r"^UCS .*\(\d+ steps, (\S+) s\)",
+    "build_seconds": r"^cement: .*\((\S+) s\)$",
+    "timestep": r"\(timestep (\S+) s\)",
+    "rate": r"rate: strain rate (\S+) 1/s",
+    "rate_factor": r"rate: strain rate \S+ 1/s = (\S+) x Suggested",
+    "tension": r"^direct tension (\S+) Pa",
+    "tension_strain": r"^direct tension \S+ Pa at strain (\S+);",
+    "tension_steps": r"^direct tension .*\((\d+) steps, \S+ s\)",
+    "tension_seconds": r"^direct tension .*\(\d+ steps, (\S+) s\)",
+    "total": r"^total (\S+) s",
+}
+TRIAXIAL = re.compile(r"^triaxial sigma3 \S+ Pa \((\d+) % UCS\): (peak|no peak within Max Strain: largest) sigma1 (\S+) "
+                      r"Pa at strain (\S+) \((\d+) steps, (\S+) s\)")
+
+
+def parse_resolution(lines):
+    """The figures of one resolution run (absent ones: nan); triaxial: [(fraction of UCS, sigma1, peaked, steps)]."""
+    row = {}
+    for key, pattern in RES_PATTERNS.items():
+        row[key] = math.nan
+        for line in lines:
+            m = re.search(pattern, line)
+            if m:
+                row[key] = float(m.group(1))
+                break
+    row["triaxial"] = []
+    for line in lines:
+        m = TRIAXIAL.search(line)
+        if m:
+            row["triaxial"].append((float(m.group(1)) / 100.0, float(m.group(3)), m.group(2) == "peak",
+                                    float(m.group(5)), float(m.group(6))))
+    if math.isnan(row["particles"]) or math.isnan(row["total"]):
+        sys.exit("resolution: an incomplete bench output (no specimen or total line)")
+    return [row]
+
+
+def resolution_args(c, n, seed, kind):
+    tests = {"ucs": "ucs", "ucs_triaxial": "ucs,triaxial", "tension": "tension"}[kind]
+    strain = {"ucs": c["ucs_max_strain"], "ucs_triaxial": c["triaxial_max_strain"],
+              "tension": c["tension_max_strain"]}[kind]
+    return (["--particles", str(n), "--seed", str(seed), "--threads", "1", "--tests", tests]
+            + (["--confining", ",".join("%g" % f for f in c["confining"])] if kind == "ucs_triaxial" else [])
+            + ["--strain-per-step", "%g" % (c["tension_strain_per_step"] if kind == "tension" else c["strain_per_step"])]
+            + ROCK[:-2] + ["--max-strain", "%g" % strain])
+
+
+def friction_angle(ucs, triaxial):
+    """Least-squares sigma1 = a + b sigma3 through (0, UCS) and the triaxial peaks; phi in degrees (nan if a
+    test reached no peak or none ran)."""
+    if not triaxial or not all(peaked for _, _, peaked, _, _ in triaxial):
+        return math.nan
+    s3 = [0.0] + [f * ucs for f, _, _, _, _ in triaxial]
+    s1 = [ucs] + [v for _, v, _, _, _ in triaxial]
+    m3, m1 = sum(s3) / len(s3), sum(s1) / len(s1)
+    b = sum((x - m3) * (y - m1) for x, y in zip(s3, s1)) / sum((x - m3) ** 2 for x in s3)
+    return math.degrees(math.asin((b - 1.0) / (b + 1.0)))
+
+
+def mean_sd(values):
+    v = [x for x in values if math.isfinite(x)]
+    if not v:
+        return math.nan, math.nan, 0
+    m = sum(v) / len(v)
+    sd = math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else math.nan
+    return m, sd, len(v)
+
+
+def resolution_runs(bench, cfg, work, new_runs):
+    """Runs (or reuses) the sweep's bench runs in their order; {(size, seed, kind): figures}, the missing runs."""
+    c = cfg["resolution"]
+    done, missing = {}, []
+    for n, seed, kind in c["order"]:
+        args = resolution_args(c, n, seed, kind)
+        name = "resolution_%d_s%d_%s" % (n, seed, kind)
+        path = os.path.join(work, name + ".txt")
+        have = False
+        if cfg is FULL and os.path.exists(path):
+            with open(path) as f:
+                have = f.readline().rstrip("\n") == "# command: " + " ".join(args)
+        if not have and not new_runs:
+            missing.append((n, seed, kind))
+            continue
+        if not have:
+            print("atlas: resolution: %s (started %s, load average %.2f)"
+                  % (name, time.strftime("%H:%M:%S UTC", time.gmtime()), os.getloadavg()[0]), flush=True)
+        r, note = run(bench, args, work, name, cfg is FULL, parse_resolution)
+        r[0]["wall"] = float(re.search(r"(\S+) s wall for the whole command", note).group(1))
+        r[0]["load"] = float(re.search(r"load average (\S+) ", note).group(1))
+        r[0]["args"] = args
+        done[(n, seed, kind)] = r[0]
+    return done, missing
+
+
+
+RES_PROPS = [("ucs", "UCS", 1e6, "MPa", "%.2f"), ("E", "E", 1e9, "GPa", "%.2f"), ("nu", "nu", 1.0, "", "%.3f"),
+             ("tension", "sigma_t", 1e6, "MPa", "%.3f"), ("phi", "friction angle", 1.0, "deg", "%.1f")]
+CONVERGED = 0.05  # within 5 % of the finest size
+
+
+def resolution_records(cfg, done):
+    """One record per size and seed: the unconfined figures (from "ucs_triaxial" where it ran, else "ucs"),
+    sigma_t, the friction angle, and the cost of each (seconds the bench measured: the specimen's
+    compaction and cementing plus the test(s); particle-steps)."""
+    per = {}
+    for (n, seed, kind), r in sorted(done.items(), key=lambda kv: kv[0][2] != "ucs_triaxial"):
+        rec = per.setdefault((n, seed), {"n": n, "seed": seed, "commands": {}})
+        rec["commands"][kind] = r
+        build = r["build_seconds"]
+        if kind in ("ucs", "ucs_triaxial"):
+            if "ucs" in rec:  # both ran: the same specimen and test, so the same figures
+                rec["ucs_twice"] = (rec["ucs"], r["ucs"])
+                continue
+            for k in ("across", "porosity", "bonds", "coordination", "ucs", "peak_strain", "E", "nu", "timestep",
+                      "rate", "rate_factor"):
+                rec[k] = r[k]
+            rec["sec_ucs"] = build + r["ucs_seconds"]
+            rec["ps_ucs"] = n * (r["compact_steps"] + r["ucs_steps"])
+            if kind == "ucs_triaxial":
+                rec["phi"] = friction_angle(r["ucs"], r["triaxial"])
+                rec["triaxial"] = r["triaxial"]
+                rec["sec_phi"] = rec["sec_ucs"] + sum(t[4] for t in r["triaxial"])
+                rec["ps_phi"] = rec["ps_ucs"] + n * sum(t[3] for t in r["triaxial"])
+        else:
+            rec["tension"] = r["tension"]
+            rec["tension_strain"] = r["tension_strain"]
+            rec["sec_tension"] = build + r["tension_seconds"]
+            rec["ps_tension"] = n * (r["compact_steps"] + r["tension_steps"])
+    return per
+
+
+def resolution_stats(cfg, per):
+    c = cfg["resolution"]
+    stats = {}
+    for n in c["sizes"]:
+        recs = [per[(n, s)] for s in c["seeds"] if (n, s) in per]
+        if not recs:
+            continue
+        st = {"n": n, "across": mean_sd([r.get("across", math.nan) for r in recs])[0],
+              "porosity": mean_sd([r.get("porosity", math.nan) for r in recs])[0],
+              "coordination": mean_sd([r.get("coordination", math.nan) for r in recs])[0],
+              "rate_factor": mean_sd([r.get("rate_factor", math.nan) for r in recs])[0]}
+        for key, _, _, _, _ in RES_PROPS:
+            st[key] = mean_sd([r.get(key, math.nan) for r in recs])
+            st[key + "_values"] = [r.get(key, math.nan) for r in recs if math.isfinite(r.get(key, math.nan))]
+        for cost in ("sec_ucs", "ps_ucs", "sec_tension", "ps_tension", "sec_phi", "ps_phi"):
+            st[cost] = mean_sd([r.get(cost, math.nan) for r in recs])[0]
+        stats[n] = st
+    return stats
+
+
+def convergence(stats, key):
+    """(the finest size with this property, the smallest size from which every size's mean lies within 5 % of
+    the finest's, the smallest size from which every seed of every size does) - None where none does."""
+    sizes = [n for n in sorted(stats) if stats[n][key][2] > 0]
+    if len(sizes) < 2:
+        return None, None, None
+    ref = stats[sizes[-1]][key][0]
+    mean_ok = [abs(stats[n][key][0] - ref) <= CONVERGED * abs(ref) for n in sizes[:-1]]
+    seed_ok = [all(abs(v - ref) <= CONVERGED * abs(ref) for v in stats[n][key + "_values"]) for n in sizes[:-1]]
+
+    def first(ok):
+        for i in range(len(ok)):
+            if all(ok[i:]):
+                return sizes[i]
+        return None
+    return sizes[-1], first(mean_ok), first(seed_ok)
+
+
+def resolution_section(bench, cfg, work, out, new_runs=True):
+    """Grains across the width against UCS, E, nu, sigma_t and the friction angle over pack seeds: error against
+    the finest size, cost (seconds, particle-steps) against error, and where each property converges within 5 %."""
+    c = cfg["resolution"]
+    done, missing = resolution_runs(bench, cfg, work, new_runs)
+    if not done:
+        sys.exit("resolution: no runs")
+    per = resolution_records(cfg, done)
+    stats = resolution_stats(cfg, per)
+    sizes = sorted(stats)
+    charted = [p for p in RES_PROPS if p[0] != "nu"]
+    cost_of = {"ucs": "ucs", "E": "ucs", "nu": "ucs", "tension": "tension", "phi": "phi"}
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.6))
+    markers = {"ucs": "o", "E": "s", "tension": "^", "phi": "D"}
+    for key, label, _, _, _ in charted:
+        ns = [n for n in sizes if stats[n][key][2] > 0]
+        if len(ns) < 1:
+            continue
+        ref = stats[ns[-1]][key][0]
+        if ns[-1] != sizes[-1] or stats[ns[-1]][key][2] < len(c["seeds"]):
+            label = "%s (against %d grains, %d seed%s)" % (label, ns[-1], stats[ns[-1]][key][2],
+                                                          "" if stats[ns[-1]][key][2] == 1 else "s")
+        err = [pct(stats[n][key][0], ref) for n in ns]
+        bar = [100.0 * stats[n][key][1] / abs(ref) if math.isfinite(stats[n][key][1]) else 0.0 for n in ns]
+        across = [stats[n]["across"] for n in ns]
+        ax[0].errorbar(across, err, yerr=bar, marker=markers[key], capsize=3, label=label)
+        ax[1].errorbar([stats[n]["sec_" + cost_of[key]] for n in ns], err, yerr=bar, marker=markers[key], capsize=3,
+                       label=label)
+        ax[2].errorbar([stats[n]["ps_" + cost_of[key]] for n in ns], err, yerr=bar, marker=markers[key], capsize=3,
+                       label=label)
+        for n, x, y in zip(ns, [stats[n]["sec_" + cost_of[key]] for n in ns], err):
+            if key == "ucs":
+                ax[1].annotate("%.1f" % stats[n]["across"], (x, y), textcoords="offset points", xytext=(4, 6),
+                               fontsize=7)
+    ax[0].set_xlabel("mean grain diameters across the width")
+    ax[1].set_xlabel("seconds per specimen (compaction, cement, test(s); 1 thread)")
+    ax[2].set_xlabel("particle-steps per specimen")
+    for a in ax:
+        a.axhspan(-100 * CONVERGED, 100 * CONVERGED, color="0.9")
+        a.axhline(0.0, color="0.5", lw=0.5)
+        a.set_ylabel("difference from the finest size (%)")
+        a.legend(fontsize=7)
+    ax[0].set_title("mean over seeds, bars: seed standard deviation", fontsize=9)
+    ax[1].set_xscale("log")
+    ax[1].set_title("cost against error (labels: grains across)", fontsize=9)
+    ax[2].set_xscale("log")
+    fig.suptitle("Resolution: stiff-bond rock, %s grains, seeds %s, %g strain per step"
+                 % ("/".join("%d" % n for n in sizes), ",".join("%d" % s for s in c["seeds"]), c["strain_per_step"]))
+    image = save_chart(fig, out, "speed_accuracy_resolution.png")
+
+    ref_size = {key: max([n for n in sizes if stats[n][key][2] > 0] or [0]) for key, _, _, _, _ in RES_PROPS}
+    ref = {key: stats[ref_size[key]][key][0] if ref_size[key] else math.nan for key, _, _, _, _ in RES_PROPS}
+
+    def cell(st, key, scale, fmt):
+        m, sd, k = st[key]
+        if k == 0:
+            return "-"
+        text = (fmt % (m / scale)) + (" +- " + fmt % (sd / scale) if k > 1 else "")
+        if key != "nu" and math.isfinite(ref[key]) and st["n"] != ref_size[key]:
+            # The difference of the means with its standard error (both sizes' seed spreads).
+            rm, rsd, rk = stats[ref_size[key]][key]
+            se = math.sqrt((sd ** 2 / k if k > 1 else math.nan) + (rsd ** 2 / rk if rk > 1 else math.nan))
+            text += " (%+.1f" % pct(m, ref[key]) + (" +- %.1f" % (100.0 * se / abs(rm)) if math.isfinite(se) else "") \
+                + " %)"
+        return text + ("" if k == len(c["seeds"]) else " [%d seed%s]" % (k, "" if k == 1 else "s"))
+    rows = []
+    for n in sizes:
+        st = stats[n]
+        seeds_ucs = [s for s in c["seeds"] if math.isfinite(per.get((n, s), {}).get("ucs", math.nan))]
+        rows.append(["%d" % n, "%.1f" % st["across"], ",".join("%d" % s for s in seeds_ucs),
+                     "%.3f / %.2f" % (st["porosity"], st["coordination"]), "%.1f" % st["rate_factor"]]
+                    + [cell(st, key, scale, fmt) for key, _, scale, _, fmt in RES_PROPS]
+                    + ["%.1f / %.1f / %s" % (st["sec_ucs"], st["sec_tension"],
+                                             "%.1f" % st["sec_phi"] if math.isfinite(st["sec_phi"]) else "-"),
+                       "%.3g / %.3g / %s" % (st["ps_ucs"], st["ps_tension"],
+                                             "%.3g" % st["ps_phi"] if math.isfinite(st["ps_phi"]) else "-")])
+    body = table(["grains", "across", "seeds", "porosity / bonded coordination",
+                  "compression strain rate / Suggested Strain Rate", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
+                  "seconds per specimen: unconfined / tension / triaxial", "particle-steps: unconfined / tension / "
+                  "triaxial"], rows)
+    # Every specimen (seed) on its own line.
+    seed_rows = []
+    for (n, s) in sorted(per):
+        r = per[(n, s)]
+
+        def f(key, scale, fmt):
+            v = r.get(key, math.nan)
+            return fmt % (v / scale) if math.isfinite(v) else "-"
+        tri = ", ".join("%.3g" % (v / 1e6) + ("" if peaked else " (no peak)") for _, v, peaked, _, _ in r.get("triaxial", []))
+        seed_rows.append(["%d" % n, "%d" % s, f("across", 1, "%.1f"), f("porosity", 1, "%.3f"),
+                          "%s (%s)" % (f("bonds", 1, "%d"), f("coordination", 1, "%.2f")), f("ucs", 1e6, "%.3f"),
+                          f("peak_strain", 1, "%.5f"), f("E", 1e9, "%.3f"), f("nu", 1, "%.3f"), f("tension", 1e6, "%.4f"),
+                          tri or "-", f("phi", 1, "%.2f"), f("sec_ucs", 1, "%.1f"), f("sec_tension", 1, "%.1f"),
+                          f("sec_phi", 1, "%.1f")])
+    seed_table = table(["grains", "seed", "across", "porosity", "bonds (coordination)", "UCS (MPa)", "strain at peak",
+                        "E (GPa)", "nu", "sigma_t (MPa)", "triaxial sigma1 at 10 / 20 % UCS (MPa)", "phi (deg)",
+                        "s unconfined", "s tension", "s triaxial"], seed_rows)
+    conv = []
+    for key, label, _, _, _ in RES_PROPS:
+        finest, mean_from, seed_from = convergence(stats, key)
+        if finest is None:
+            conv.append("%s: fewer than two sizes measured" % label)
+            continue
+        def name(n):
+            return "%d grains (%.1f across)" % (n, stats[n]["across"])
+        conv.append("%s: the mean within 5 %% of %s's %s; every seed within 5 %% %s" % (
+            label, name(finest), ("from " + name(mean_from)) if mean_from else "at no smaller size",
+            ("from " + name(seed_from)) if seed_from else "at no smaller size"))
+    loads = sorted(r["load"] for r in done.values())
+    walls = sum(r["wall"] for r in done.values())
+    compression = [r for (_, _, k), r in done.items() if k != "tension"]
+    kinds = {"ucs_triaxial": "unconfined and triaxial", "ucs": "unconfined", "tension": "tension"}
+    commands = "; ".join("%s: `rockdem_bench_rock %s`" % (
+        kinds[k], " ".join(resolution_args(c, "N", "S", k))) for k in
+        ("ucs_triaxial", "ucs", "tension"))
+    runs_by_kind = {}
+    for (n, s, k) in sorted(done):
+        runs_by_kind.setdefault(k, []).append("%d/%d" % (n, s))
+    text = ("Commands (N grains, seed S): %s (%s; load average %.2f-%.2f before the runs, %d runs, %.0f s wall in all; "
+            "each run's command, load and output in `atlas_runs/resolution_N_sS_KIND.txt`). Runs made (grains/seed): %s. "
+            "Compression tests: timestep %.3g-%.3g s (the smallest grain is smaller in a larger pack), strain rate "
+            "%.3g-%.3g 1/s = %.3g-%.3g x the Suggested Strain Rate.\n\n"
+            "Mean over the seeds +- their standard deviation, and (in brackets) the difference of the mean from the "
+            "finest size's (the reference) +- its standard error (from both sizes' seed spreads):\n\n%s\n\n"
+            "Within 5 %% of the finest size (the mean over the seeds; each seed on its own):\n\n%s\n\n%s\n\n%s") % (
+        commands, machine(), loads[0], loads[-1], len(done), walls,
+        "; ".join("%s %s" % (kinds[k], ", ".join(v)) for k, v in runs_by_kind.items()),
+        min(comp["timestep"] for comp in compression), max(comp["timestep"] for comp in compression),
+        min(comp["rate"] for comp in compression), max(comp["rate"] for comp in compression),
+        min(comp["rate_factor"] for comp in compression), max(comp["rate_factor"] for comp in compression), body, "\n".join("- " + line for line in conv),
+        "Each specimen:\n\n" + seed_table + "".join(
+            "\n\nThe unconfined test of %d grains, seed %d, ran twice (alone and before the triaxial tests): UCS %.4g "
+            "and %.4g Pa (%s)." % (n, seed, a, b, "the same" if a == b else "NOT the same")
+            for (n, seed), rec in sorted(per.items()) if "ucs_twice" in rec for a, b in [rec["ucs_twice"]]),
+        ("**Not run** (grains/seed/kind): %s." % ", ".join("%d/%d/%s" % m for m in missing)) if missing
+        else "Every planned run finished.")
+    numbers = [{k: v for k, v in r.items() if isinstance(v, float)} for r in per.values()]
+    # Non-finite figures: a missing test leaves nan on purpose; only the measured ones are checked.
+    numbers = [{k: v for k, v in d.items() if math.isfinite(v) or k not in ("phi", "tension", "sec_phi", "ps_phi",
+                                                                             "sec_tension", "ps_tension", "tension_strain")}
+               for d in numbers]
+    return text, numbers, [image]
+
+
+
+# The strain-rate effect against the seed spread (SpeedAccuracy.md "Strain rate": is the rate effect
+# separable from the path noise at a larger size?): the resolution sweep's 700-grain specimens (7 across,
+# seeds 1-3) loaded at 4 x and 1 x the Suggested Strain Rate, beside their unconfined test of the sweep
+# (1e-7 per step). Each specimen is the same at every rate: the differences are paired.
+FULL["rate_seeds"] = {"particles": 700, "seeds": [1, 2, 3], "factors": [4, 1], "max_strain": 0.006}
+
+
+def rate_seeds_section(bench, cfg, work, out, new_runs=True):
+    c = cfg["rate_seeds"]
+    r = cfg["resolution"]
+    rows, notes = [], []
+    for seed in c["seeds"]:
+        args = ["--particles", str(c["particles"]), "--seed", str(seed), "--threads", "1", "--tests", "rates",
+                "--rate-factors", ",".join("%g" % f for f in c["factors"])] + ROCK[:-2] + ["--max-strain",
+                                                                                          "%g" % c["max_strain"]]
+        name = "rate_seeds_%d_s%d" % (c["particles"], seed)
+        path = os.path.join(work, name + ".txt")
+        if not os.path.exists(path) and not new_runs:
+            continue  # not run (the clock)
+        sweep, note = run(bench, args, work, name, True)
+        base = os.path.join(work, "resolution_%d_s%d_ucs_triaxial.txt" % (c["particles"], seed))
+        with open(base) as f:
+            b = parse_resolution(f.read().splitlines())[0]
+        rows.append({"seed": seed, "sweep": sweep, "base": b})
+        notes.append(note)
+    if not rows:
+        return "Not run.", [], []
+    slow = min(c["factors"])
+
+    def at(row, factor):
+        return next(x for x in row["sweep"] if x["factor"] == factor)
+    lines = []
+    diffs = {f: [] for f in c["factors"] if f != slow}
+    diffs["sweep"] = []
+    ediffs = {k: [] for k in diffs}
+    for row in rows:
+        ref = at(row, slow)
+        cells = ["%d" % row["seed"], "%.3f (%.1f x, %d steps)" % (row["base"]["ucs"] / 1e6, row["base"]["rate_factor"],
+                                                                  row["base"]["ucs_steps"])]
+        d = pct(row["base"]["ucs"], ref["ucs"])
+        diffs["sweep"].append(d)
+        ediffs["sweep"].append(pct(row["base"]["E"], ref["E"]))
+        for f in sorted(c["factors"], reverse=True):
+            x = at(row, f)
+            cells.append("%.3f (%d steps)" % (x["ucs"] / 1e6, x["steps"]))
+            if f != slow:
+                diffs[f].append(pct(x["ucs"], ref["ucs"]))
+                ediffs[f].append(pct(x["E"], ref["E"]))
+        cells += ["%+.1f %%" % diffs[f][-1] for f in sorted(c["factors"], reverse=True) if f != slow]
+        cells.append("%+.1f %%" % d)
+        cells.append("%.2f / %.2f / %.2f" % (row["base"]["E"] / 1e9, at(row, max(c["factors"]))["E"] / 1e9,
+                                             ref["E"] / 1e9))
+        lines.append(cells)
+    header = (["seed", "UCS (MPa) at the sweep's 1e-7 per step"]
+              + ["UCS (MPa) at %g x" % f for f in sorted(c["factors"], reverse=True)]
+              + ["%g x vs %g x" % (f, slow) for f in sorted(c["factors"], reverse=True) if f != slow]
+              + ["1e-7 per step vs %g x" % slow, "E (GPa): 1e-7 per step / %g x / %g x" % (max(c["factors"]), slow)])
+    summary = []
+    for k in diffs:
+        m, sd, n = mean_sd(diffs[k])
+        em, esd, _ = mean_sd(ediffs[k])
+        summary.append("%s against %g x: UCS %+.1f %% +- %.1f %% (mean +- standard deviation of the %d paired "
+                       "differences), E %+.1f %% +- %.1f %%" % ("the sweep's 1e-7 per step" if k == "sweep" else
+                                                              "%g x" % k, slow, m, sd, n, em, esd))
+    text = ("Commands: `rockdem_bench_rock %s` with `--seed` %s (%s; %s), beside the resolution sweep's "
+            "unconfined test of the same specimens.\n\n%s\n\n%s.") % (
+        " ".join(["--particles", str(c["particles"]), "--seed", "S", "--threads", "1", "--tests", "rates",
+                  "--rate-factors", ",".join("%g" % f for f in c["factors"])] + ROCK[:-2]
+                 + ["--max-strain", "%g" % c["max_strain"]]),
+        ", ".join("%d" % row["seed"] for row in rows), machine(), "; ".join(notes), table(header, lines),
+        "; ".join(summary))
+    return text, [{"d": v} for k in diffs for v in diffs[k]], []
+
+
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
     page = ""
@@ -591,7 +1023,9 @@ def main():
     parser.add_argument("--out", default=os.path.join(HERE, "..", "Documentation"))
     parser.add_argument("--work", default=None)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law",
+    parser.add_argument("--no-new-runs", action="store_true",
+                        help="resolution: write the table from the runs in WORK only, listing the missing ones")
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law,resolution",
                         help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
@@ -601,7 +1035,9 @@ def main():
     sections, numbers, images = {}, [], []
     makers = {"rates": rates_section, "modulus": modulus_section, "threads": threads_section,
               "stability": stability_section, "timestep_bonded": timestep_bonded_section,
-              "contact_law": contact_law_section}
+              "contact_law": contact_law_section,
+              "resolution": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs),
+              "rate_seeds": lambda *a: rate_seeds_section(*a, new_runs=not o.no_new_runs)}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text
