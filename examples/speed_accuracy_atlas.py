@@ -504,16 +504,22 @@ LAW_PATTERNS = {
 }
 
 
-def parse_law(lines):
-    """The figures of one --tests ucs[,tension] bench run (absent ones: nan)."""
+def first_matches(patterns, lines):
+    """{key: the number the first line matching patterns[key] holds (nan when none does)}."""
     row = {}
-    for key, pattern in LAW_PATTERNS.items():
+    for key, pattern in patterns.items():
         row[key] = math.nan
         for line in lines:
             m = re.search(pattern, line)
             if m:
                 row[key] = float(m.group(1))
                 break
+    return row
+
+
+def parse_law(lines):
+    """The figures of one --tests ucs[,tension] bench run (absent ones: nan)."""
+    row = first_matches(LAW_PATTERNS, lines)
     if math.isnan(row["ucs"]):
         sys.exit("no UCS line in the bench output")
     return [row]
@@ -599,43 +605,23 @@ QUICK["resolution"] = {
     "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
     "tension_max_strain": 0.0004,
     "order": [(n, s, k) for n in (120, 250) for s in (1, 2) for k in ("ucs_triaxial", "tension")]}
-RES_PATTERNS = {
-    "across": r"^specimen: \d+ particles, .* (\S+) mean diameters across",
-    "particles": r"^specimen: (\d+) particles",
-    "porosity": r"Compact Elements: porosity \S+ -> (\S+) ",
-    "compact_steps": r"\d+ stages, (\d+) steps\.",
-    "bonds": r"installed (\d+) bonds",
-    "coordination": r"bonded coordination (\S+) ",
-    "ucs": r"^UCS (\S+) Pa at strain",
-    "peak_strain": r"^UCS \S+ Pa at strain (\S+);",
-    "E": r"^UCS .*; E (\S+) Pa;",
-    "nu": r"^UCS .*; nu (\S+);",
-    "ucs_steps": r"^UCS .*\((\d+) steps, \S+ s\)",
-    "ucs_seconds": r"^UCS .*\(\d+ steps, (\S+) s\)",
-    "build_seconds": r"^cement: .*\((\S+) s\)$",
-    "timestep": r"\(timestep (\S+) s\)",
-    "rate": r"rate: strain rate (\S+) 1/s",
-    "rate_factor": r"rate: strain rate \S+ 1/s = (\S+) x Suggested",
-    "tension": r"^direct tension (\S+) Pa",
-    "tension_strain": r"^direct tension \S+ Pa at strain (\S+);",
-    "tension_steps": r"^direct tension .*\((\d+) steps, \S+ s\)",
-    "tension_seconds": r"^direct tension .*\(\d+ steps, (\S+) s\)",
-    "total": r"^total (\S+) s",
-}
+# The resolution runs' figures: those of the contact-law runs and the specimen's size, the
+# build time, the rate against the suggestion and the tensile strain.
+RES_PATTERNS = dict(
+    LAW_PATTERNS,
+    across=r"^specimen: \d+ particles, .* (\S+) mean diameters across",
+    particles=r"^specimen: (\d+) particles",
+    build_seconds=r"^cement: .*\((\S+) s\)$",
+    rate_factor=r"rate: strain rate \S+ 1/s = (\S+) x Suggested",
+    tension_strain=r"^direct tension \S+ Pa at strain (\S+);",
+)
 TRIAXIAL = re.compile(r"^triaxial sigma3 \S+ Pa \((\d+) % UCS\): (peak|no peak within Max Strain: largest) sigma1 (\S+) "
                       r"Pa at strain (\S+) \((\d+) steps, (\S+) s\)")
 
 
 def parse_resolution(lines):
     """The figures of one resolution run (absent ones: nan); triaxial: [(fraction of UCS, sigma1, peaked, steps)]."""
-    row = {}
-    for key, pattern in RES_PATTERNS.items():
-        row[key] = math.nan
-        for line in lines:
-            m = re.search(pattern, line)
-            if m:
-                row[key] = float(m.group(1))
-                break
+    row = first_matches(RES_PATTERNS, lines)
     row["triaxial"] = []
     for line in lines:
         m = TRIAXIAL.search(line)
