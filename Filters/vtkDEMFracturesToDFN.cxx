@@ -59,6 +59,7 @@ vtkDEMFracturesToDFN::vtkDEMFracturesToDFN()
   , ClusterDistance(0.0)
   , MinimumFill(0.0)
   , OrientationTolerance(dem::FractureParameters().orientationTolerance)
+  , BandSignificance(dem::FractureParameters().bandSignificance)
   , DiscSides(24)
   , NumberOfBrokenBonds(0)
   , NumberOfClusters(0)
@@ -119,6 +120,7 @@ int vtkDEMFracturesToDFN::RequestData(
     params.clusterDistance = this->ClusterDistance;
     params.minimumFill = this->MinimumFill;
     params.orientationTolerance = this->OrientationTolerance;
+    params.bandSignificance = this->BandSignificance;
     params.discSides = this->DiscSides;
     dem::validate(params);
     const dem::Model model = rockdem::MultiBlockToModel(input);
@@ -245,6 +247,7 @@ void vtkDEMFracturesToDFN::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ClusterDistance: " << this->ClusterDistance << " m\n";
   os << indent << "MinimumFill: " << this->MinimumFill << "\n";
   os << indent << "OrientationTolerance: " << this->OrientationTolerance << " degrees\n";
+  os << indent << "BandSignificance: " << this->BandSignificance << " standard deviations\n";
   os << indent << "DiscSides: " << this->DiscSides << "\n";
   os << indent << "BrokenBonds: " << this->NumberOfBrokenBonds << "\n";
   os << indent << "Clusters: " << this->NumberOfClusters << "\n";

@@ -70,6 +70,13 @@ public:
   /// this angle of the plane's running normal, degrees, [0, 90); 0 = off (dem::FractureParameters).
   vtkSetMacro(OrientationTolerance, double);
   vtkGetMacro(OrientationTolerance, double);
+
+  /// Band Significance, standard deviations, >= 0 (0 = off): the leftover damage of a
+  /// non-planar cluster is scanned for flat bands one Cluster Distance thick; the band
+  /// whose cracks most exceed the cluster's damage fraction becomes a candidate disc when
+  /// the excess reaches this many standard deviations (dem::FractureParameters).
+  vtkSetMacro(BandSignificance, double);
+  vtkGetMacro(BandSignificance, double);
   ///@}
 
   ///@{
@@ -106,6 +113,7 @@ protected:
   double ClusterDistance;
   double MinimumFill;
   double OrientationTolerance;
+  double BandSignificance;
   int DiscSides;
 
   // Read-only values are results, not parameters: setting them must not call Modified().

@@ -27,6 +27,10 @@ constexpr double kLocalGate = 0.5;      ///< Local Planarity a crack needs to se
 constexpr double kGrownShare = 0.05;    ///< a grown plane holds at least this share of its cluster
 constexpr double kGrownFillContrast = 0.5; ///< a grown plane's Fill exceeds the damage fraction D by this share of 1 - D
 constexpr double kGrowThickness = 0.5;  ///< a grown plane takes cracks within this x Cluster Distance of it
+constexpr double kMaxThickness = 2.0;   ///< a disc's cracks lie within a slab this x Cluster Distance thick (sqrt(12 l1))
+constexpr int kScanDirections3D = 1000; ///< band-scan normals over a hemisphere (2D: every degree in the plane)
+constexpr int kScanOffsets = 4;         ///< band-scan offsets per slab thickness
+constexpr int kScanBands = 8;           ///< bands taken from one cluster at most
 
 struct Crack {
   Vec3 position;        ///< m
@@ -584,6 +588,127 @@ std::vector<std::vector<std::size_t>> growPlanes(const std::vector<Crack>& crack
   return result;
 }
 
+/// Unit normals of the band scan: every degree in the XY plane (2D), or kScanDirections3D
+/// directions spread evenly over the upper hemisphere (a Fibonacci lattice).
+std::vector<Vec3> scanDirections(bool section2D)
+{
+  std::vector<Vec3> out;
+  if (section2D) {
+    for (int k = 0; k < 180; ++k) {
+      const double a = k * kPi / 180.0;
+      out.emplace_back(std::cos(a), std::sin(a), 0.0);
+    }
+    return out;
+  }
+  const double golden = kPi * (1.0 + std::sqrt(5.0));
+  for (int k = 0; k < kScanDirections3D; ++k) {
+    const double z = (k + 0.5) / kScanDirections3D;
+    const double r = std::sqrt(1.0 - z * z);
+    out.emplace_back(r * std::cos(golden * (k + 0.5)), r * std::sin(golden * (k + 0.5)), z);
+  }
+  return out;
+}
+
+/// Bands scanned through the unassigned cracks `rest` of a non-planar cluster (see
+/// extractFractures): slabs `thickness` thick over every scan direction and offset; the
+/// slab whose cracks most exceed the count expected from the damage fraction of the
+/// cluster's box, in standard deviations, is a candidate when that reaches `significance`;
+/// its connected parts that `accept` takes are returned. Repeated on the cracks left, at
+/// most kScanBands times, until a candidate yields nothing.
+template <typename Accept, typename Parts>
+std::vector<std::vector<std::size_t>> scanBands(const std::vector<Crack>& cracks, std::vector<std::size_t> rest,
+  const std::vector<Vec3>& bondMid, double thickness, double significance, std::size_t minimum, bool section2D,
+  const Accept& accept, const Parts& parts)
+{
+  std::vector<std::vector<std::size_t>> result;
+  if (rest.size() < minimum || !(thickness > 0.0)) {
+    return result;
+  }
+  // Cracks are placed at their bond's midpoint now, as the intact bonds are.
+  const auto at = [&](std::size_t k) -> const Vec3& { return bondMid[cracks[k].bond]; };
+  Vec3 lo = at(rest.front());
+  Vec3 hi = lo;
+  for (std::size_t k : rest) {
+    lo = lo.cwiseMin(at(k));
+    hi = hi.cwiseMax(at(k));
+  }
+  lo -= Vec3::Constant(thickness);
+  hi += Vec3::Constant(thickness);
+  std::vector<Vec3> box; // the bonds of the cluster's box
+  for (const Vec3& m : bondMid) {
+    if ((m.array() >= lo.array()).all() && (m.array() <= hi.array()).all()) {
+      box.push_back(m);
+    }
+  }
+  const std::vector<Vec3> normals = scanDirections(section2D);
+  const double step = thickness / kScanOffsets;
+  for (int band = 0; band < kScanBands && rest.size() >= minimum; ++band) {
+    const double p = static_cast<double>(rest.size()) / static_cast<double>(box.size());
+    if (!(p > 0.0 && p < 1.0)) {
+      break;
+    }
+    double bestZ = -1.0;
+    Vec3 bestNormal(0, 0, 1);
+    double bestLow = 0.0;
+    std::vector<double> bonds, broken;
+    for (const Vec3& n : normals) {
+      double smin = n.dot(box.front());
+      for (const Vec3& m : box) {
+        smin = std::min(smin, n.dot(m));
+      }
+      smin -= thickness;
+      double smax = smin;
+      for (const Vec3& m : box) {
+        smax = std::max(smax, n.dot(m));
+      }
+      const std::size_t bins = static_cast<std::size_t>((smax - smin) / step) + 2;
+      bonds.assign(bins, 0.0);
+      broken.assign(bins, 0.0);
+      for (const Vec3& m : box) {
+        bonds[static_cast<std::size_t>((n.dot(m) - smin) / step)] += 1.0;
+      }
+      for (std::size_t k : rest) {
+        const double s = (n.dot(at(k)) - smin) / step;
+        if (s >= 0.0 && s < static_cast<double>(bins)) {
+          broken[static_cast<std::size_t>(s)] += 1.0;
+        }
+      }
+      for (std::size_t i = 0; i + kScanOffsets <= bins; ++i) {
+        double nb = 0.0;
+        double kb = 0.0;
+        for (int j = 0; j < kScanOffsets; ++j) {
+          nb += bonds[i + static_cast<std::size_t>(j)];
+          kb += broken[i + static_cast<std::size_t>(j)];
+        }
+        if (kb < static_cast<double>(minimum) || nb <= 0.0) {
+          continue;
+        }
+        const double z = (kb - nb * p) / std::sqrt(nb * p * (1.0 - p));
+        if (z > bestZ) {
+          bestZ = z;
+          bestNormal = n;
+          bestLow = smin + static_cast<double>(i) * step;
+        }
+      }
+    }
+    if (bestZ < significance) {
+      break;
+    }
+    std::vector<std::size_t> slab, left;
+    for (std::size_t k : rest) {
+      const double s = bestNormal.dot(at(k)) - bestLow;
+      (s >= 0.0 && s < thickness ? slab : left).push_back(k);
+    }
+    for (const auto& part : parts(slab)) {
+      if (part.size() >= minimum && accept(part)) {
+        result.push_back(part);
+      }
+    }
+    rest.swap(left); // a candidate's cracks are not scanned again, whether or not it made a disc
+  }
+  return result;
+}
+
 std::string plural(std::size_t n, const char* one, const char* many)
 {
   return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -604,6 +729,7 @@ void validate(const FractureParameters& p)
     throw InputError("Orientation Tolerance = " + formatValue(p.orientationTolerance) +
       " degrees is out of range: valid range is [0, 90) degrees (0 = off).");
   }
+  requireNonNegative("Band Significance", p.bandSignificance, "standard deviations");
   if (p.discSides < 3) {
     throw InputError("Disc Sides = " + std::to_string(p.discSides) +
       " is out of range: valid range is [3, inf) (a polygon needs at least three vertices).");
@@ -633,6 +759,7 @@ FractureCounts& FractureCounts::operator+=(const FractureCounts& o)
   rejectedSparse += o.rejectedSparse;
   splitClusters += o.splitClusters;
   grownClusters += o.grownClusters;
+  scannedClusters += o.scannedClusters;
   cracksInDiscs += o.cracksInDiscs;
   return *this;
 }
@@ -663,6 +790,10 @@ std::string FractureReport::summary() const
       if (c.grownClusters) {
         s += " (" + std::to_string(c.grownClusters) + " by planes grown within Orientation Tolerance " +
           formatValue(orientationTolerance) + " deg)";
+      }
+      if (c.scannedClusters) {
+        s += " (" + std::to_string(c.scannedClusters) + " with bands scanned at Band Significance " +
+          formatValue(bandSignificance) + ")";
       }
     }
     s += ".";
@@ -725,6 +856,7 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   report.minimumPlanarity = params.minimumPlanarity;
   report.minimumFill = params.minimumFill;
   report.orientationTolerance = params.orientationTolerance;
+  report.bandSignificance = params.bandSignificance;
   const double distance = params.clusterDistance > 0.0 ? params.clusterDistance : DefaultClusterDiameters * meanParticleDiameter(model);
   report.clusterDistance = distance;
   const auto& r = model.particles.radius;
@@ -758,6 +890,10 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
   }
 
   const BondSegments segments = bondSegments(model);
+  std::vector<std::size_t> crackOfBond(b.size(), 0); // the crack of a broken bond
+  for (std::size_t k = 0; k < cracks.size(); ++k) {
+    crackOfBond[cracks[k].bond] = k;
+  }
   const double damage = b.size() ? static_cast<double>(cracks.size()) / static_cast<double>(b.size()) : 0.0;
   const double grownFill = damage + kGrownFillContrast * (1.0 - damage);
   const std::size_t minimum = static_cast<std::size_t>(params.minimumCracks);
@@ -771,7 +907,10 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
     enum class Verdict { Emitted, NonPlanar, Sparse };
     auto tryDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
       const PlaneFit f = fitPlane(cracks, part, section2D);
-      if (f.planarity < params.minimumPlanarity) {
+      // Planar: flat for its size (Planarity) and thin in absolute terms (the thickness of
+      // the uniform slab with its spread, sqrt(12 l1), within kMaxThickness Cluster
+      // Distances); the damage cloud of a whole 2D section of aspect 2 is "flat" for its size.
+      if (f.planarity < params.minimumPlanarity || std::sqrt(12.0 * f.lambda[0]) > kMaxThickness * distance) {
         return Verdict::NonPlanar;
       }
       FractureDisc d = makeDisc(set, f, cracks, part, model.domain, params.discSides);
@@ -829,6 +968,27 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
           grownDisc(part, &found);
         }
         c.grownClusters += found.empty() ? 0 : 1;
+      }
+      if (params.bandSignificance > 0.0) {
+        std::vector<char> taken(cracks.size(), 0);
+        for (const auto& d : found) {
+          for (std::size_t bond : d.bonds) {
+            taken[crackOfBond[bond]] = 1;
+          }
+        }
+        std::vector<std::size_t> rest;
+        for (std::size_t k : cluster) {
+          if (!taken[k]) {
+            rest.push_back(k);
+          }
+        }
+        const auto bands = scanBands(cracks, rest, segments.mid, distance, params.bandSignificance, minimum,
+          section2D, [&](const std::vector<std::size_t>& part) { return grownDisc(part, nullptr); },
+          [&](const std::vector<std::size_t>& slab) { return connectedParts(cracks, slab, distance, shareDistance); });
+        for (const auto& part : bands) {
+          grownDisc(part, &found);
+        }
+        c.scannedClusters += bands.empty() ? 0 : 1;
       }
       if (found.empty()) {
         ++c.rejectedNonPlanar;

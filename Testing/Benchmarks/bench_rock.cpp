@@ -45,7 +45,9 @@
 //     counts a peak only at an axial strain of S or more (default 1 % of --max-strain), so
 //     that the stress oscillation at the start of an undamped test does not end it.
 //   --dump DIR with --tests ucs also writes DIR/ucs_failed.csv, the unconfined specimen at the
-//     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py).
+//     frame where the stress has fallen to 70 % of the peak (scripts/plot_failed_specimen.py),
+//     and DIR/ucs_failed.rdem, the model at that frame (a state file: DEM Fractures To DFN,
+//     the pictures or a further test can be run on it).
 //   --tests ucs,tension --specimen cylinder|both: the unconfined and direct tension tests (and
 //     the localisation figures, the DFN, --dump's DIR/ucs_failed_cylinder.csv) also, or only, on
 //     the cylinder that --tests envelopes carves (diameter = the box's width, length = its
@@ -72,6 +74,7 @@
 #include "dem/Membrane.h"
 #include "dem/Pack.h"
 #include "dem/Specimen.h"
+#include "dem/StateFile.h"
 #include "dem/Random.h"
 #include "dem/Simulation.h"
 #include "dem/StrainRateAdvice.h"
@@ -1253,6 +1256,7 @@ int main(int argc, char** argv)
     const TestResult u = runTest(spec, TestMode::Compression, 0.0, o, true, Confinement::RigidWalls, &failed, cylinder);
     if (!o.dump.empty()) {
       dumpSpecimen(failed, o.dump + (cylinder ? "/ucs_failed_cylinder.csv" : "/ucs_failed.csv")); // the frame at 70 % of the peak
+      writeState(failed.end, o.dump + (cylinder ? "/ucs_failed_cylinder.rdem" : "/ucs_failed.rdem")); // the same frame, to run on
       printFrames(cylinder ? "cylinder ucs" : "ucs", failed);
     }
     std::printf("%sUCS %.4g Pa at strain %.4g; E %.4g Pa; nu %.3f; broken %zu (%.1f %% of bonds); "

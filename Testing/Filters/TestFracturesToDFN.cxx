@@ -230,14 +230,15 @@ TEST(FracturesToDFN, BadParameterIsNamedAndGivesNoOutput)
   dfn->SetInputData(mb);
   ASSERT_TRUE(UpdateSucceeded(dfn));
   ASSERT_EQ(dfn->GetNumberOfDiscs(), 1);
-  for (int bad = 0; bad < 4; ++bad)
+  for (int bad = 0; bad < 5; ++bad)
   {
     vtkNew<vtkDEMFracturesToDFN> f;
     f->SetInputData(mb);
     const char* name = bad == 0 ? "Minimum Cracks"
       : bad == 1                ? "Minimum Planarity"
       : bad == 2                ? "Cluster Distance"
-                                : "Orientation Tolerance = 90 degrees";
+      : bad == 3                ? "Orientation Tolerance = 90 degrees"
+                                : "Band Significance = -1 standard deviations";
     if (bad == 0)
     {
       f->SetMinimumCracks(2);
@@ -251,9 +252,13 @@ TEST(FracturesToDFN, BadParameterIsNamedAndGivesNoOutput)
     {
       f->SetClusterDistance(-1.0);
     }
-    else
+    else if (bad == 3)
     {
       f->SetOrientationTolerance(90.0); // the property reaches the engine's validation
+    }
+    else
+    {
+      f->SetBandSignificance(-1.0);
     }
     vtkNew<ErrorCatcher> errors;
     f->AddObserver(vtkCommand::ErrorEvent, errors);

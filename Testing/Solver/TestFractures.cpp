@@ -461,6 +461,9 @@ TEST(Fractures, BadParametersAreNamed)
   p.orientationTolerance = -1.0;
   EXPECT_NE(message(p).find("Orientation Tolerance = -1 degrees"), std::string::npos) << message(p);
   p = FractureParameters();
+  p.bandSignificance = -1.0;
+  EXPECT_NE(message(p).find("Band Significance = -1 standard deviations"), std::string::npos) << message(p);
+  p = FractureParameters();
   p.discSides = 2;
   EXPECT_NE(message(p).find("Disc Sides = 2"), std::string::npos) << message(p);
   EXPECT_THROW(extractFractures(cementedPack(), p), InputError);
@@ -515,6 +518,7 @@ TEST(Fractures, CrossingRoughPlanesInNoiseGiveTwoDiscs)
   }
   FractureParameters off;
   off.orientationTolerance = 0.0;
+  off.bandSignificance = 0.0;
   const FractureNetwork before = extractFractures(m, off);
   EXPECT_EQ(before.discs.size(), 0u) << "distance clustering alone: one non-planar blob\n" << before.report.summary();
   EXPECT_EQ(before.report.total.rejectedNonPlanar, 1u) << before.report.summary();
@@ -919,4 +923,132 @@ TEST(Fractures, Section2DCracksOnALineAreOneVerticalDiscAlongTheLine)
   // Its polygon: the trace x the slab, a vertical rectangle.
   ASSERT_EQ(d.polygon.size(), 4u);
   EXPECT_NEAR(std::abs(d.polygon[2].z() - d.polygon[0].z()), 0.001, 1e-15);
+}
+
+namespace {
+
+/// Breaks in tension, with probability `chance`, each intact bond whose midpoint lies
+/// within `halfWidth` of the plane through `point` with `normal` (any plane when
+/// halfWidth is infinite); the crack sits at the midpoint. Returns how many.
+std::size_t breakInBand(Model& m, const Vec3& point, const Vec3& normal, double halfWidth, double chance,
+  Random& rng)
+{
+  const auto slot = slots(m);
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < m.bonds.size(); ++k) {
+    const Vec3& a = m.particles.position[slot.at(m.bonds.idA[k])];
+    const Vec3& c = m.particles.position[slot.at(m.bonds.idB[k])];
+    const Vec3 mid = 0.5 * (a + c);
+    if (m.bonds.broken(k) || std::abs(normal.dot(mid - point)) > halfWidth || rng.uniform() >= chance) {
+      continue;
+    }
+    m.bonds.failure[k] = static_cast<std::uint8_t>(BondFailure::Tension);
+    m.bonds.failurePosition[k] = mid;
+    m.bonds.failureNormal[k] = (c - a).normalized();
+    ++n;
+  }
+  return n;
+}
+
+/// Cracks of the discs within `degrees` of `normal` (each counted once).
+std::size_t cracksInDiscsAlong(const FractureNetwork& net, const Vec3& normal, double degrees)
+{
+  std::vector<std::size_t> bonds;
+  for (const FractureDisc& d : net.discs) {
+    if (std::abs(d.normal.dot(normal)) >= std::cos(degrees * kPi / 180.0)) {
+      bonds.insert(bonds.end(), d.bonds.begin(), d.bonds.end());
+    }
+  }
+  std::sort(bonds.begin(), bonds.end());
+  return static_cast<std::size_t>(std::unique(bonds.begin(), bonds.end()) - bonds.begin());
+}
+
+} // namespace
+
+// A failed specimen's shear band: a thick zone (here 3 mean diameters) where nearly every
+// bond is broken, through diffuse damage that has broken 40 % of all bonds. Distance
+// clustering joins it all into one non-planar cluster, and the local growth finds no
+// planar neighbourhood in a zone that thick; the band scan reads it (Fractures.md,
+// "Band scan"). Without the band, the same number of cracks spread at random emits nothing.
+TEST(Fractures, BandScanReadsAThickBandThroughDiffuseDamage)
+{
+  const double d = meanParticleDiameter(cementedPack());
+  const Vec3 centre = boxCentre(cementedPack());
+  const Vec3 n = normalFromDipAzimuth(60.0, 30.0);
+  Model m = cementedPack();
+  Random rng(12);
+  const std::size_t diffuse = breakInBand(m, centre, n, 1e9, 0.4, rng);
+  const std::size_t band = breakInBand(m, centre, n, 1.5 * d, 0.95, rng);
+  const std::size_t total = diffuse + band;
+  ASSERT_GT(band, 500u);
+
+  FractureParameters noScan;
+  noScan.bandSignificance = 0.0;
+  const FractureNetwork without = extractFractures(m, noScan);
+  const FractureNetwork net = extractFractures(m, FractureParameters());
+  std::printf("[band] %zu diffuse + %zu band cracks of %zu bonds: without the scan %zu discs, %zu cracks along the "
+              "band; with it %zu discs, %zu along the band\n%s\n",
+    diffuse, band, m.bonds.size(), without.discs.size(), cracksInDiscsAlong(without, n, 10.0), net.discs.size(),
+    cracksInDiscsAlong(net, n, 10.0), net.report.summary().c_str());
+  EXPECT_EQ(without.report.total.scannedClusters, 0u);
+  EXPECT_EQ(net.report.total.scannedClusters, 1u) << net.report.summary();
+  EXPECT_NE(net.report.summary().find("with bands scanned at Band Significance 8"), std::string::npos);
+  // The band's discs: parallel to it, centred in it, as wide as the specimen, and holding
+  // most of the band's cracks (a band 3 diameters thick reads as slabs 2 diameters thick).
+  const std::size_t along = cracksInDiscsAlong(net, n, 10.0);
+  EXPECT_GT(along, band / 2) << net.report.summary();
+  EXPECT_GT(along, cracksInDiscsAlong(without, n, 10.0) + band / 4);
+  double widest = 0.0;
+  for (const FractureDisc& disc : net.discs) {
+    if (std::abs(disc.normal.dot(n)) >= std::cos(10.0 * kPi / 180.0)) {
+      EXPECT_LT(std::abs(n.dot(disc.center - centre)), 1.5 * d) << "disc outside the band";
+      widest = std::max(widest, disc.radius);
+    }
+  }
+  EXPECT_GT(widest, 0.3 * m.domain.size.x());
+
+  Model control = cementedPack();
+  Random rng2(12);
+  const std::size_t spread = breakInBand(control, centre, n, 1e9, static_cast<double>(total) / m.bonds.size(), rng2);
+  const FractureNetwork none = extractFractures(control, FractureParameters());
+  EXPECT_EQ(none.discs.size(), 0u) << spread << " cracks at random\n" << none.report.summary();
+}
+
+// A disc is thin in absolute terms too: on a 2D section of aspect 3 the cloud of diffuse
+// damage is "flat for its size" (Planarity near 1 - 1/9), yet it is no fracture. With a
+// band through it, the discs are the band, not one disc fitted to every crack.
+TEST(Fractures, Section2DDamageCloudIsNotOneDisc)
+{
+  Model m;
+  m.domain.section2D = true;
+  m.domain.size = Vec3(0.03, 0.09, 0.002);
+  PackParameters p;
+  p.initialElements = 3000;
+  p.minimumSize = 0.0005;
+  p.maximumSize = 0.00075;
+  p.randomSeed = 5;
+  buildPack(m, p);
+  growElements(m);
+  CementParameters c;
+  c.gapTolerance = 1.0;
+  cement(m, c);
+  const double d = meanParticleDiameter(m);
+  const Vec3 centre = boxCentre(m);
+  const Vec3 n = normalFromDipAzimuth(90.0, 100.0); // a steep band, 10 deg from the long axis Y
+  Random rng(3);
+  const std::size_t diffuse = breakInBand(m, centre, n, 1e9, 0.45, rng);
+  const std::size_t band = breakInBand(m, centre, n, 1.5 * d, 0.95, rng);
+  const FractureNetwork net = extractFractures(m, FractureParameters());
+  const double distance = net.report.clusterDistance;
+  std::size_t inDiscs = 0;
+  for (const FractureDisc& disc : net.discs) {
+    EXPECT_LE(std::sqrt(12.0 * disc.eigenvalues[0]), 2.0 * distance + 1e-12) << "a disc is a thin slab";
+    inDiscs += disc.crackCount();
+  }
+  const std::size_t along = cracksInDiscsAlong(net, n, 5.0);
+  std::printf("[2D band] %zu diffuse + %zu band cracks of %zu bonds: %zu discs, %zu cracks in them, %zu along the "
+              "band\n%s\n",
+    diffuse, band, m.bonds.size(), net.discs.size(), inDiscs, along, net.report.summary().c_str());
+  EXPECT_GT(along, band / 2);
+  EXPECT_LT(inDiscs, (diffuse + band) / 2) << "the discs are the band, not the whole cloud";
 }

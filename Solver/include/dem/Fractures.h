@@ -43,6 +43,12 @@ struct FractureParameters {
   /// non-planar cluster when its local plane is within this angle of the plane's running
   /// normal; 0 = off (distance clustering and the plane split only).
   double orientationTolerance = 30.0;
+  /// Band Significance, standard deviations, [0, inf): the damage a non-planar cluster
+  /// leaves after the split and the growth is scanned for flat bands (slabs one Cluster
+  /// Distance thick, every orientation and offset); the band whose cracks most exceed the
+  /// count expected from the cluster's damage fraction becomes a candidate plane when the
+  /// excess is at least this many standard deviations; 0 = off.
+  double bandSignificance = 8.0;
   int discSides = 24;              ///< Disc Sides: vertices of each disc polygon, >= 3
 };
 
@@ -83,6 +89,7 @@ struct FractureCounts {
   std::size_t rejectedSparse = 0;    ///< planar clusters whose disc has a Fill below Minimum Fill
   std::size_t splitClusters = 0;     ///< non-planar clusters resolved into planar parts
   std::size_t grownClusters = 0;     ///< of those, resolved by orientation-aware growth (Orientation Tolerance)
+  std::size_t scannedClusters = 0;   ///< non-planar clusters with discs from the band scan (Band Significance)
   std::size_t cracksInDiscs = 0;     ///< cracks that ended up in a disc
   FractureCounts& operator+=(const FractureCounts& o);
 };
@@ -95,6 +102,7 @@ struct FractureReport {
   double minimumPlanarity = 0.0;
   double minimumFill = 0.0;
   double orientationTolerance = 0.0; ///< degrees
+  double bandSignificance = 0.0;     ///< standard deviations
   /// Several lines: per set "Tensile: N broken bonds, C clusters, D discs, ...", then a
   /// line saying why nothing was emitted when that is the case.
   std::string summary() const;
@@ -150,8 +158,19 @@ Vec3 normalFromDipAzimuth(double dipDegrees, double azimuthDegrees);
 /// 5 % of its cluster (and Minimum Cracks) is a disc when it passes the same tests as a
 /// cluster and is clearly more broken than the model: Fill >= D + (1 - D) / 2, D the
 /// broken fraction of all bonds (a chance alignment in diffuse damage has a Fill near D); the
-/// cracks of no disc stay unassigned (scattered damage). Only when no plane is found is
-/// the cluster rejected as non-planar.
+/// cracks of no disc stay unassigned (scattered damage).
+/// With Band Significance > 0 the cracks of a non-planar cluster that are in no disc yet
+/// are then scanned for bands: for each normal (2D: every degree in the plane; 3D: 1,000
+/// directions spread over a hemisphere) the cluster's bonds (intact and broken, their
+/// centre-to-centre midpoints, inside the cluster's box) and its unassigned cracks are
+/// counted in slabs one Cluster Distance thick at offsets a quarter of that apart; with p
+/// the unassigned cracks over the bonds of the box, the slab with the largest z = (k - n p)
+/// / sqrt(n p (1 - p)) (k cracks, n bonds in it) is a candidate when z reaches Band
+/// Significance (chance maxima over the ~10^5 slabs of a uniform spread are about 5); its
+/// connected parts become discs when they pass the test of a grown plane; repeated on the
+/// cracks still unassigned, at most 8 times, until a candidate fails. This reads the thick,
+/// steep band through a specimen's diffuse damage that the local growth misses. Only when
+/// no plane is found is the cluster rejected as non-planar.
 FractureNetwork extractFractures(const Model& model, const FractureParameters& params);
 
 } // namespace dem
