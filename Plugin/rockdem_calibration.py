@@ -622,6 +622,13 @@ def _ucs_strain(target):
     return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
 
 
+def _elastic_strain(target):
+    """Max Strain of the elastic compression (stiffness stage): 1/4 of UCS / E, in [1e-4, 2e-3]."""
+    ucs_t, e_t = target.get("ucs"), target.get("youngs_modulus")
+    strain = 0.25 * (ucs_t / e_t) if (ucs_t and e_t) else 2e-4
+    return min(max(strain, 1e-4), 2e-3)
+
+
 def _tension_strain(target):
     """Max Strain of a direct tension: 4 x sigma_t / E, in [0.002, 0.01]."""
     return min(0.01, max(0.002, 4.0 * target.get("tensile_strength", 0.0) / target.get("youngs_modulus", 1e300)))
@@ -629,9 +636,11 @@ def _tension_strain(target):
 
 def verify(parameters, seeds=(2, 3, 4), progress=None):
     """The calibrated parameters on fresh specimens: for each Random Seed, a new pack of the
-    calibration's recipe, cemented with the calibrated parameters, tested as in the
-    strength stage (unconfined compression and the target's tensile test). Returns a list
-    of {seed, measured, errors} (errors against the calibration's target)."""
+    calibration's recipe, cemented with the calibrated parameters, tested as the
+    calibration measures each property: Poisson's ratio on the elastic compression (and E
+    there too when the target has no UCS), E and UCS on the compression to failure, the
+    tensile strength by the target's tensile test. Returns a list of {seed, measured,
+    errors} (errors against the calibration's target)."""
     doc = load_parameters(parameters) if isinstance(parameters, str) else parameters
     target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
     out = []
@@ -640,9 +649,13 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
         bench = _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
         try:
             m = {}
-            if "ucs" in target or "youngs_modulus" in target or "poissons_ratio" in target:
+            if "poissons_ratio" in target or ("youngs_modulus" in target and "ucs" not in target):
+                re_ = bench.compression(doc["parameters"], _elastic_strain(target), elastic=True)
+                m["poissons_ratio"] = re_["nu"]
+                m["youngs_modulus" if "ucs" not in target else "elastic_youngs_modulus"] = re_["E"]
+            if "ucs" in target:
                 rc = bench.compression(doc["parameters"], _ucs_strain(target))
-                m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
+                m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "failure_poissons_ratio": rc["nu"]})
             if "tensile_strength" in target:
                 m["tensile_strength"] = bench.tension(doc["parameters"], _tension_strain(target))["tensile_strength"]
             rec = {"seed": int(seed), "measured": m, "errors": _errors(target, m),
@@ -742,15 +755,14 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         keys = [k for k in keys if k not in unreachable]
         return within(errs, keys) and not stale.intersection(keys)
 
-    elastic_strain = 0.25 * (ucs_t / e_t) if (ucs_t and e_t) else 2e-4
-    elastic_strain = min(max(elastic_strain, 1e-4), 2e-3)
+    elastic_strain = _elastic_strain(target)
     stiff_keys = [k for k in ("youngs_modulus", "poissons_ratio") if k in target]
     strength_keys = [k for k in ("ucs", "tensile_strength") if k in target]
     env_keys = ["friction_angle"] if "friction_angle" in target else []
 
-    def stiffness_solvers():
+    def stiffness_solvers(match_e=True):
         lo, hi = BRACKETS["BondStiffnessRatio"]
-        return [new_e_solver(),
+        return [new_e_solver() if match_e else None,
                 SecantSolver(target["poissons_ratio"], math.log(lo), math.log(hi), slope_guess=-0.05,
                              max_step=math.log(3.0)) if "poissons_ratio" in target else None]
 
@@ -758,8 +770,10 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         return SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None
 
     def stiffness_step(solvers, m, errs):
-        """Secant updates of Bond Modulus (E) and Bond Stiffness Ratio (nu) from one test;
-        True when both are within tolerance (or nu is unreachable)."""
+        """Secant updates of Bond Modulus (E) and Bond Stiffness Ratio (nu) from one test,
+        each only where its solver is given (solvers[0] for E, solvers[1] for nu; the
+        strength stage gives no nu solver); True when both are within tolerance (or nu is
+        unreachable)."""
         e_solver, nu_solver = solvers
         done = True
         if e_solver:
@@ -782,27 +796,42 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 # the old ratio (measured at 1e-7 per step: a bracket end kept from ratio 0.4
                 # held Bond Modulus at 6.9e10 with E 7 % low for 20 tests), so it restarts
                 # from the next test (its first step, slope 1 on log-log, is proportional)
-                solvers[0] = new_e_solver()
+                if solvers[0] is not None:
+                    solvers[0] = new_e_solver()
                 done = False
         return done
 
     for _round in range(4):
         # ---- 1. stiffness ------------------------------------------------------------
         # (a stage whose properties are within tolerance and current is not run again)
-        if stiff_keys and not settled(stiff_keys):
-            solvers = stiffness_solvers()
+        # Poisson's ratio is matched here only, on the elastic test. E is matched here
+        # until a compression to failure has measured it (the strength stage, when the
+        # target has a UCS: E is that test's, the Target table's definition); after that
+        # this stage matches nu alone and keeps the elastic test's E as
+        # elastic_youngs_modulus (not a target: the strength stage's E is the one matched).
+        match_e = not (ucs_t and any(rec["stage"] == "strength" for rec in iterations))
+        keys_here = [k for k in stiff_keys if match_e or k == "poissons_ratio"]
+        if keys_here and not settled(keys_here):
+            solvers = stiffness_solvers(match_e)
             while bench.tests < max_tests:
                 r = bench.compression(p, elastic_strain, elastic=True)
-                m = {"youngs_modulus": r["E"], "poissons_ratio": r["nu"]}
+                m = {"youngs_modulus" if match_e else "elastic_youngs_modulus": r["E"], "poissons_ratio": r["nu"]}
                 errs = report("stiffness", "elastic compression", m)
                 if stiffness_step(solvers, m, errs):
                     break
         # ---- 2. strength ---------------------------------------------------------------
-        # Every compression to failure measures E and nu too (the laboratory's values, in
-        # the window below the peak); they keep being matched here, jointly with the
-        # strengths (one secant per variable, all updated after each test).
-        if strength_keys and not settled(stiff_keys + strength_keys):
-            solvers = stiffness_solvers()
+        # Every compression to failure measures E too (the laboratory's value, in the
+        # window between 10 and 50 % of the peak); it keeps being matched here, jointly
+        # with the strengths (one secant per variable, all updated after each test).
+        # Poisson's ratio is NOT matched here: the lateral strain of that window is not
+        # elastic once bonds break (it read 0.97-1.24 at 1e-7 per step, 1.7-2.0 at 1e-6,
+        # where the elastic test read 0.236, and drove the Bond Stiffness Ratio to its
+        # bracket end; Calibration.md). The failure test's nu is kept in the record as
+        # failure_poissons_ratio, for information.
+        e_keys = [k for k in stiff_keys if k == "youngs_modulus"] if ucs_t else []
+        if strength_keys and not settled(e_keys + strength_keys):
+            solvers = stiffness_solvers(match_e=True)
+            solvers[1] = None
             def new_scale_solver():
                 return SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
             s_solver = new_scale_solver()
@@ -813,7 +842,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 m = {}
                 if ucs_t:
                     rc = bench.compression(p, ucs_strain)
-                    m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "poissons_ratio": rc["nu"]})
+                    m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "failure_poissons_ratio": rc["nu"]})
                     histories["ucs"] = rc["history"]
                 if st_t:
                     rt = bench.tension(p, _tension_strain(target))
@@ -846,7 +875,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                         # the old lever value, so they start again from the next test
                         # (their first step, slope 1 on log-log, is the proportional one)
                         s_solver = new_scale_solver()
-                        solvers = stiffness_solvers()
+                        solvers = [new_e_solver(), None]
                     else:
                         unreachable.add("tensile_strength")
                 if done:
@@ -905,7 +934,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
 ITERATION_COLUMNS = ("test", "stage", "kind", "BondModulus", "BondStiffnessRatio", "TensileStrength",
                      "Cohesion", "FrictionAngle", "BondRange", "MomentContribution", "bonded_coordination", "youngs_modulus", "poissons_ratio",
-                     "ucs", "tensile_strength", "friction_angle", "err_youngs_modulus", "err_poissons_ratio",
+                     "elastic_youngs_modulus", "failure_poissons_ratio", "ucs", "tensile_strength", "friction_angle", "err_youngs_modulus", "err_poissons_ratio",
                      "err_ucs", "err_tensile_strength", "err_friction_angle", "seconds")
 
 

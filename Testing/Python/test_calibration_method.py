@@ -240,6 +240,62 @@ c.check(res["converged"] and abs(res["parameters"]["MomentContribution"] - beta_
         "ratio depending on Tensile / Bond Modulus: converged in %d tests, beta %.3g (exact %.3g)"
         % (res["tests"], res["parameters"]["MomentContribution"], beta_sm))
 
+# Poisson's ratio from the elastic test only. Measured (Calibration.md, granite at 1e-7
+# per step): the compression to failure's window below the peak read nu 0.97-1.24 where
+# the elastic test read 0.236, and the strength stage, matching nu on it, drove the Bond
+# Stiffness Ratio to its bracket end 2. Here the failure test reads such a nu (falling
+# with the ratio, so a secant on it pushes the ratio up to 2); the elastic test reads the
+# model's nu. The calibration must match nu on the elastic test alone and leave the Bond
+# Stiffness Ratio where the stiffness stage put it in every strength test.
+class FailureWindowNuBench(SyntheticBench):
+    """SyntheticBench whose compression to failure reads nu = 1.1 - 0.1 log(1 + r) (not
+    elastic); the elastic compression reads nu = 0.28 - 0.12 log(1 + r)."""
+
+    failure_nus = []
+
+    def compression(self, p, strain, elastic=False):
+        r = SyntheticBench.compression(self, p, strain, elastic)
+        if not elastic:
+            r["nu"] = 1.1 - 0.1 * math.log(1 + p["BondStiffnessRatio"])
+            self.failure_nus.append(r["nu"])
+        return r
+
+
+nu_target = {"youngs_modulus": 20e9, "poissons_ratio": 0.18, "ucs": 50e6, "tensile_strength": 6e6}
+log = []
+nu_bench = FailureWindowNuBench()
+res = cal.calibrate(nu_target, {"max_tests": 40}, progress=log.append, bench=nu_bench)
+ratio_moves = []
+last_stiffness_ratio = None
+for rec in log:
+    r = rec["parameters"]["BondStiffnessRatio"]
+    if rec["stage"] == "stiffness":
+        last_stiffness_ratio = r
+    elif rec["stage"] == "strength" and r != last_stiffness_ratio:
+        ratio_moves.append((rec["test"], last_stiffness_ratio, r))
+failure_nus = nu_bench.failure_nus
+c.check(failure_nus and min(failure_nus) > 0.9 and
+        [rec["measured"].get("failure_poissons_ratio") for rec in log if rec["stage"] == "strength"] == failure_nus,
+        "the failure tests read nu %.3g-%.3g (not elastic), kept in the records as failure_poissons_ratio"
+        % (min(failure_nus), max(failure_nus)))
+c.check(res["converged"] and "poissons_ratio" not in res["unreachable"] and
+        abs(res["errors"]["poissons_ratio"]) <= 0.03 and abs(res["measured"]["poissons_ratio"] - 0.18) <= 0.03,
+        "nu matched on the elastic test: converged in %d tests, nu %.4f (target 0.18), unreachable %s"
+        % (res["tests"], res["measured"]["poissons_ratio"], res["unreachable"]))
+c.check(not ratio_moves and abs(res["parameters"]["BondStiffnessRatio"] / r_exact - 1) < 0.3 and
+        res["parameters"]["BondStiffnessRatio"] < cal.BRACKETS["BondStiffnessRatio"][1],
+        "the strength stage never moved the Bond Stiffness Ratio (%s); final %.3g (exact %.3g, bracket end %g)"
+        % (ratio_moves or "no move", res["parameters"]["BondStiffnessRatio"], r_exact,
+           cal.BRACKETS["BondStiffnessRatio"][1]))
+last = {}
+for rec in log:
+    for k in rec["errors"]:
+        last[k] = rec
+c.check(last["poissons_ratio"]["stage"] == "stiffness" and
+        last["poissons_ratio"]["parameters"] == res["cement"],
+        "the final nu is an elastic test's, measured with the final parameters (test %d)"
+        % last["poissons_ratio"]["test"])
+
 # unreachable: UCS / sigma_t = 60 (the issue's example) on a model that tops out at 14
 bad = {"youngs_modulus": 20e9, "ucs": 60e6, "tensile_strength": 1e6}
 res = cal.calibrate(bad, {"max_tests": 30}, bench=SyntheticBench())
