@@ -219,6 +219,14 @@ c.check(res["converged"] and res["parameters"]["MomentContribution"] == 1.0 and
         "UCS / sigma_t = 4: converged in %d tests, beta %g, Cohesion / Tensile %.3g (exact %.3g)"
         % (res["tests"], res["parameters"]["MomentContribution"], res["parameters"]["CohesionRatio"], q_low))
 
+# a Brazilian target: the strength stage runs the bench's tension with the target's type
+res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 50e6, "tensile_strength": 6e6, "tensile_test": "brazilian"},
+                    {"max_tests": 40}, bench=SyntheticBench())
+kinds = sorted(set(rec["kind"] for rec in res["iterations"] if rec["stage"] == "strength"))
+c.check(res["converged"] and kinds == ["compression + brazilian test"],
+        "Brazilian target on the synthetic specimen: converged in %d tests, strength records %s"
+        % (res["tests"], kinds))
+
 # the ratio also depending on the bond strength relative to the modulus (as measured:
 # weaker bonds against the same modulus give a higher UCS / sigma_t, Calibration.md): a
 # ratio point means something only where UCS and E are matched; with the points taken
@@ -332,7 +340,8 @@ bad_cases = [
     ({"youngs_modulus": -5e9}, ("youngs_modulus", "-5000000000", "> 0")),
     ({"poissons_ratio": 0.5}, ("poissons_ratio", "0.5", "(0, 0.5)")),
     ({"poissons_ratio": -0.1}, ("poissons_ratio", "-0.1", "(0, 0.5)")),
-    ({"ucs": 1e6, "tensile_strength": 1e5, "tensile_test": "splitting"}, ("tensile_test", "'splitting'", "'direct'")),
+    ({"ucs": 1e6, "tensile_strength": 1e5, "tensile_test": "splitting"},
+     ("tensile_test", "'splitting'", "'direct', 'brazilian'")),
     ({"ucs": 1e6, "friction_angle": 95.0, "confining_stresses": [0, 1e6]}, ("friction_angle", "95", "(0, 90)")),
     ({"ucs": 1e6, "friction_angle": 40.0}, ("confining_stresses", "None", ">= 2 distinct")),
     ({"UCS": 1e6}, ("UCS", "1000000", "valid keys")),
@@ -344,6 +353,27 @@ for bad_target, words in bad_cases:
         c.check(False, "bad target %r raised nothing" % bad_target)
     except cal.CalibrationError as e:
         c.check(all(w in str(e) for w in words), "bad target %r: %s" % (bad_target, e))
+# the tensile test types: 'brazilian' is valid; the preset names the one it uses
+c.check(cal.TENSILE_TESTS == ("direct", "brazilian") and
+        cal.validate_target({"tensile_strength": 9.3e6, "tensile_test": "brazilian"})["tensile_test"] == "brazilian",
+        "TENSILE_TESTS %s: a Brazilian target validates" % (cal.TENSILE_TESTS,))
+granite = cal.load_rock("lac_du_bonnet_granite")
+granite_b = cal.load_rock("lac_du_bonnet_granite", tensile_test="brazilian")
+c.check(granite["tensile_test"] == "direct" and granite["tensile_strength"] == 6.9e6 and
+        granite_b["tensile_test"] == "brazilian" and granite_b["tensile_strength"] == 9.3e6 and
+        {k: v for k, v in granite_b.items() if k not in ("tensile_test", "tensile_strength")} ==
+        {k: v for k, v in granite.items() if k not in ("tensile_test", "tensile_strength")},
+        "Lac du Bonnet preset: direct 6.9 MPa by default, Brazilian 9.3 MPa with tensile_test='brazilian' "
+        "(the rest the same)")
+for args, words in (((("lac_du_bonnet_granite",), {"tensile_test": "splitting"}),
+                     ("tensile_test", "'splitting'", "'direct', 'brazilian'")),
+                    ((("berea_sandstone",), {"tensile_test": "brazilian"}),
+                     ("tensile_test", "'brazilian'", "Berea sandstone", "'direct'"))):
+    try:
+        cal.load_rock(*args[0], **args[1])
+        c.check(False, "load_rock%r accepted" % (args,))
+    except cal.CalibrationError as e:
+        c.check(all(w in str(e) for w in words), "load_rock(%s, %s): %s" % (args[0][0], args[1], e))
 try:
     cal.validate_recipe({"elements": 3})
     c.check(False, "recipe elements 3 accepted")
