@@ -1022,7 +1022,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
 ITERATION_COLUMNS = ("test", "stage", "kind", "BondModulus", "BondStiffnessRatio", "TensileStrength",
                      "Cohesion", "FrictionAngle", "BondRange", "MomentContribution", "bonded_coordination", "youngs_modulus", "poissons_ratio",
-                     "elastic_youngs_modulus", "failure_poissons_ratio", "ucs", "tensile_strength", "friction_angle", "err_youngs_modulus", "err_poissons_ratio",
+                     "elastic_youngs_modulus", "failure_poissons_ratio", "ucs", "tensile_strength", "friction_angle",
+                     "err_youngs_modulus", "err_poissons_ratio",
                      "err_ucs", "err_tensile_strength", "err_friction_angle", "seconds")
 
 

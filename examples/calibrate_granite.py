@@ -6,8 +6,9 @@
 
 Loads the preset Data/rocks/<rock>.json (Lac du Bonnet granite by default; also
 berea_sandstone; --tensile-test brazilian takes the preset's Brazilian strength and
-calibrates it on a Brazilian disc carved from the cemented specimen), runs rockdem.calibrate on one compacted specimen of the given size and
-prints every specimen test as it finishes (parameters tried, properties measured, errors).
+calibrates it on a Brazilian disc carved from the cemented specimen), runs
+rockdem.calibrate on one compacted specimen of the given size and prints every specimen
+test as it finishes (parameters tried, properties measured, errors).
 Writes in the output folder: iterations.csv, parameters.json (rockdem.load_parameters /
 rockdem.build_specimen read it back), ucs_history.csv, tension_history.csv,
 stress_strain.png, envelope.png. Documentation/Calibration.md explains the method and what
