@@ -2,11 +2,13 @@
 
     pvpython examples/calibrate_granite.py [--rock lac_du_bonnet_granite] [--elements 600]
         [--max-tests 30] [--only E,nu,UCS,sigma_t,phi] [--verify 2,3,4] [--output results/calibration]
-        [--strain-per-step 1e-6]
+        [--strain-per-step 1e-6] [--tensile-test direct|brazilian]
 
 Loads the preset Data/rocks/<rock>.json (Lac du Bonnet granite by default; also
-berea_sandstone), runs rockdem.calibrate on one compacted specimen of the given size and
-prints every specimen test as it finishes (parameters tried, properties measured, errors).
+berea_sandstone; --tensile-test brazilian takes the preset's Brazilian strength and
+calibrates it on a Brazilian disc carved from the cemented specimen), runs
+rockdem.calibrate on one compacted specimen of the given size and prints every specimen
+test as it finishes (parameters tried, properties measured, errors).
 Writes in the output folder: iterations.csv, parameters.json (rockdem.load_parameters /
 rockdem.build_specimen read it back), ucs_history.csv, tension_history.csv,
 stress_strain.png, envelope.png. Documentation/Calibration.md explains the method and what
@@ -38,6 +40,9 @@ def main():
     parser.add_argument("--strain-per-step", type=float, default=None,
                         help="platen strain per timestep of every test (the recipe's strain_per_step, "
                              "default 1e-6; Rock.md used 1e-7 in compression, 1e-8 in tension)")
+    parser.add_argument("--tensile-test", default=None, choices=("direct", "brazilian"),
+                        help="which of the preset's tensile strengths to calibrate, and by which test "
+                             "(default: the preset's own, direct for both presets)")
     args = parser.parse_args()
     plugin = os.environ.get("ROCKDEM_PLUGIN") or os.path.join(
         SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so")
@@ -45,7 +50,7 @@ def main():
     os.environ.setdefault("ROCKDEM_SOURCE_DIR", SOURCE_DIR)
     import rockdem
 
-    target = rockdem.load_rock(args.rock)
+    target = rockdem.load_rock(args.rock, tensile_test=args.tensile_test)
     wanted = set()
     for name in args.only.split(","):
         if name.strip() not in KEYS:
