@@ -7,7 +7,11 @@ that frame (the least-squares affine field taken out: where the section slides o
 the bonds broken before the peak as grey dots and after it as red dots; bottom, the bonds
 broken after the peak alone (a shear band or a split shows as a strip of them).
 
-    scripts/plot_section2d.py DIR1/ucs_failed.csv[:LABEL] [DIR2/ucs_failed.csv[:LABEL] ...] -o out.png
+    scripts/plot_section2d.py DIR1/ucs_failed.csv[:LABEL] [DIR2/ucs_failed.csv[:LABEL] ...] -o out.png \
+        [--dfn DFN1.csv,DFN2.csv,...]
+
+--dfn draws the traces of the discs of DEM Fractures To DFN's Summary table (Save Data of
+its second port; one per dump, in order, empty to skip one) on both rows, in blue.
 
 Needs matplotlib (Debian: python3-matplotlib).
 """
@@ -22,11 +26,28 @@ from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
 
+def read_traces(path):
+    """The disc traces of a 2D DFN summary table: a segment of length 2 x Radius through
+    the centre, perpendicular to the normal, in the XY plane."""
+    import csv
+    traces = []
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            c = np.array([float(row["CenterX"]), float(row["CenterY"])])
+            n = np.array([float(row["NormalX"]), float(row["NormalY"])])
+            t = np.array([-n[1], n[0]]) / np.linalg.norm(n)
+            r = float(row["Radius"])
+            traces.append((tuple(c - r * t), tuple(c + r * t)))
+    return traces
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dumps", nargs="+", help="ucs_failed.csv of a 2D run, optionally :LABEL")
     parser.add_argument("-o", "--output", default="section2d.png")
+    parser.add_argument("--dfn", default="", help="DFN summary CSVs, comma-separated, one per dump")
     args = parser.parse_args()
+    dfns = args.dfn.split(",") if args.dfn else []
     columns = len(args.dumps)
     fig, axes = plt.subplots(2, columns, figsize=(3.4 * columns, 11.5), squeeze=False)
     for k, spec in enumerate(args.dumps):
@@ -47,6 +68,12 @@ def main():
                       % (label or path, len(before), len(after)), fontsize=8)
         bottom.plot(after[:, 0], after[:, 1], ".", color="red", ms=1.6)
         bottom.set_title("%s: the %d bonds broken after the peak" % (label or "", len(after)), fontsize=8)
+        traces = read_traces(dfns[k]) if k < len(dfns) and dfns[k] else []
+        for ax in (top, bottom):
+            for (x0, y0), (x1, y1) in traces:
+                ax.plot([x0, x1], [y0, y1], "-", color="blue", lw=1.2)
+        if traces:
+            bottom.set_title(bottom.get_title() + "\nblue: the %d DFN discs' traces" % len(traces), fontsize=8)
         for ax in (top, bottom):
             ax.set_xlim(xy[:, 0].min() - radius.max(), xy[:, 0].max() + radius.max())
             ax.set_ylim(xy[:, 1].min() - radius.max(), xy[:, 1].max() + radius.max())
