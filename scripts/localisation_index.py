@@ -26,7 +26,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_localisation import read_dump  # noqa: E402
+from failed_dump import read_dump  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -70,16 +70,21 @@ def dip(normal, axis):
     return float(np.degrees(np.arcsin(min(1.0, abs(normal[axis])))))
 
 
-def report(label, what, points, box, normals, width, axis, rng):
-    if len(points) < 10:
-        print("%-28s %-12s %6d cracks: too few" % (label, what, len(points)))
-        return
+def band_excess(points, box, normals, width, rng):
+    """The best band of the points against a uniform spread over box, and the same for a
+    control of as many uniform points: ((excess, share, area_share, normal), control)."""
     reference = rng.uniform(box[0], box[1], size=(20000, 3))
     control = rng.uniform(box[0], box[1], size=(len(points), 3))
     if np.all(box[0][2] == box[1][2]):
         reference[:, 2] = control[:, 2] = box[0][2]
-    e, share, area, n = best_band(points, reference, normals, width)
-    ec, sc, ac, _ = best_band(control, reference, normals, width)
+    return best_band(points, reference, normals, width), best_band(control, reference, normals, width)
+
+
+def report(label, what, points, box, normals, width, axis, rng):
+    if len(points) < 10:
+        print("%-28s %-12s %6d cracks: too few" % (label, what, len(points)))
+        return
+    (e, share, area, n), (ec, sc, ac, _) = band_excess(points, box, normals, width, rng)
     print("%-28s %-12s %6d cracks: excess %.3f (band holds %.1f %% on %.1f %% of the specimen, "
           "x%.2f; plane %.0f deg from the loading axis) | control excess %.3f (%.1f %% on %.1f %%)"
           % (label, what, len(points), e, 100 * share, 100 * area, share / max(area, 1e-12),

@@ -34,7 +34,6 @@ radius profile. Needs matplotlib and numpy (Debian:
 python3-matplotlib, python3-numpy).
 """
 import argparse
-import csv
 import math
 import os
 import sys
@@ -44,27 +43,9 @@ from rockdem_plotting import pyplot  # noqa: E402
 
 plt = pyplot()
 import numpy as np  # noqa: E402
+from failed_dump import read_dump  # noqa: E402,F401 (the dump reader, shared)
 from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
-
-
-def read_dump(path):
-    grains, bonds = [], []
-    with open(path) as f:
-        reader = csv.DictReader(f)
-        if "px" not in reader.fieldnames:
-            sys.exit(path + " has no peak frame (px, py, pz): rerun rockdem_bench_rock --dump with this version")
-        for row in reader:
-            if row["kind"] == "particle":
-                shear = [float(row[k]) for k in ("sx", "sy", "sz")] if "sx" in row else [0.0, 0.0, 0.0]
-                grains.append([float(row[k]) for k in ("x", "y", "z", "radius", "dx", "dy", "dz", "px", "py", "pz",
-                                                        "fx", "fy", "fz")] + [int(row["surface"])] + shear)
-            else:
-                bonds.append([float(row["x"]), float(row["y"]), float(row["z"]), int(row["after_peak"]),
-                              1 if row["kind"] == "tension" else 0])
-    g = np.array(grains)
-    b = np.array(bonds) if bonds else np.zeros((0, 5))
-    return g, b
 
 
 def affine_fit(x, u):
