@@ -642,7 +642,7 @@ std::vector<std::vector<std::size_t>> scanBands(const std::vector<Crack>& cracks
   }
   const std::vector<Vec3> normals = scanDirections(section2D);
   const double step = thickness / kScanOffsets;
-  for (int band = 0; band < kScanBands && rest.size() >= minimum; ++band) {
+  for (int band = 0; band < kScanBands && rest.size() >= minimum && !box.empty(); ++band) {
     const double p = static_cast<double>(rest.size()) / static_cast<double>(box.size());
     if (!(p > 0.0 && p < 1.0)) {
       break;
@@ -704,7 +704,15 @@ std::vector<std::vector<std::size_t>> scanBands(const std::vector<Crack>& cracks
         result.push_back(part);
       }
     }
-    rest.swap(left); // a candidate's cracks are not scanned again, whether or not it made a disc
+    // The candidate's slab is set aside, cracks and bonds, whether or not it made a disc:
+    // the next candidate is tested against the damage fraction of the rest.
+    rest.swap(left);
+    box.erase(std::remove_if(box.begin(), box.end(),
+                [&](const Vec3& m) {
+                  const double s = bestNormal.dot(m) - bestLow;
+                  return s >= 0.0 && s < thickness;
+                }),
+      box.end());
   }
   return result;
 }
