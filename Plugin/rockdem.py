@@ -8,6 +8,22 @@ then ``import rockdem``); also usable from a source checkout by putting ``Plugin
 from paraview import simple as _simple
 
 
+def white_view(size, time=None, axes=True):
+    """A new render view for pictures: white background (not the palette's), size [w, h]
+    pixels, the view time (s) when given, the orientation axes shown or not."""
+    view = _simple.CreateView("RenderView")
+    view.ViewSize = list(size)
+    if time is not None:
+        view.ViewTime = time
+    view.OrientationAxesVisibility = 1 if axes else 0
+    view.Background = [1.0, 1.0, 1.0]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    return view
+
+
 def show_particles(source, view=None, port=0, color_by="Radius"):
     """Show a RockDEM model's particles as spheres of their true radius.
 

@@ -52,14 +52,7 @@ def main():
     table = os.path.join(args.output, "dfn.csv")
     SaveData(table, proxy=OutputPort(dfn, 1))
 
-    view = CreateView("RenderView")
-    view.ViewSize = [1000, 1000]
-    view.ViewTime = t
-    view.Background = [1.0, 1.0, 1.0]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = rockdem.white_view([1000, 1000], time=t)
     rockdem.show_fractures(dfn, view, model=press)
     view.CameraPosition = [0.07, -0.05, 0.05]
     view.CameraFocalPoint = [0.01, 0.01, 0.01]

@@ -138,14 +138,7 @@ def main():
             f.write("%s,%d,%.6f\n" % (stage, n, porosity))
     os.replace(summary + ".tmp", summary)
 
-    view = CreateView("RenderView")
-    view.ViewSize = [1000, 1200]
-    view.OrientationAxesVisibility = 1
-    view.Background = [1.0, 1.0, 1.0]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = rockdem.white_view([1000, 1200])
     display = rockdem.show_particles(pack, view)
     bar = GetScalarBar(GetColorTransferFunction("Radius"), view)
     bar.Title = "Radius (m)"

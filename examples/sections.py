@@ -28,19 +28,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE_DIR = os.path.dirname(HERE)
 
 
-def white_view(size, time_value):
-    view = CreateView("RenderView")
-    view.ViewSize = size
-    view.ViewTime = time_value
-    view.OrientationAxesVisibility = 0
-    view.Background = [1.0, 1.0, 1.0]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    return view
-
-
 def titled_bar(lut, view, title):
     """The colour legend of a transfer function in a view, with a title."""
     bar = GetScalarBar(lut, view)
@@ -99,7 +86,7 @@ def main():
     section = rockdem.section(press, "XZ", origin=middle)
     section.UpdatePipeline(t)
     print("section: %s" % rockdem.read_only(section, "LastMessage"), flush=True)
-    view = white_view([1000, 1000], t)
+    view = rockdem.white_view([1000, 1000], time=t, axes=False)
     circles = rockdem.show_section(section, view, color_by="VonMisesStress", trace_width=2.0)
     lut = GetColorTransferFunction("VonMisesStress")
     lut.ApplyPreset("Viridis (matplotlib)", True)
@@ -121,7 +108,7 @@ def main():
     print("voxels: %s" % rockdem.read_only(voxels, "LastMessage"), flush=True)
     # Data Mode Binary: readable with Debian 12's updated expat (Sections.md, "Saving a voxel model")
     SaveData(os.path.join(args.output, "voxels.vti"), proxy=voxels, DataMode="Binary")
-    view2 = white_view([1000, 1000], t)
+    view2 = rockdem.white_view([1000, 1000], time=t, axes=False)
     rockdem.show_voxels(voxels, view2, "Damage", opacity=[0.0, 0.0, 0.1, 0.0, 0.3, 0.35, 1.0, 0.9])
     outline = Show(Outline(Input=voxels), view2)  # the grid's box
     outline.ColorArrayName = ["POINTS", ""]
@@ -138,7 +125,7 @@ def main():
     print("picture: %s" % picture, flush=True)
 
     # Close-up: true spheres, correct at any zoom (a corner of the specimen).
-    view3 = white_view([1000, 1000], t)
+    view3 = rockdem.white_view([1000, 1000], time=t, axes=False)
     spheres = rockdem.show_as_sphere_glyphs(press, view3, color_by="VonMisesStress", resolution=32)
     spheres.RescaleTransferFunctionToDataRange(False, True)
     view3.CameraPosition = [side * 1.35, -side * 0.55, side * 1.3]
@@ -151,7 +138,7 @@ def main():
     print("picture: %s" % picture, flush=True)
 
     # Shadows: the specimen on a floor, true spheres (a surface mesh) and a shadow-map light.
-    view4 = white_view([1000, 1000], t)
+    view4 = rockdem.white_view([1000, 1000], time=t, axes=False)
     floor = Plane(Origin=[-side, -side, 0.0], Point1=[2 * side, -side, 0.0], Point2=[-side, 2 * side, 0.0])
     floor_display = Show(floor, view4)
     floor_display.ColorArrayName = ["POINTS", ""]

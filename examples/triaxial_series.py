@@ -56,14 +56,7 @@ def main():
 
     view = None
     if args.pictures:
-        view = CreateView("RenderView")
-        view.ViewSize = [800, 1000]
-        view.Background = [1.0, 1.0, 1.0]
-        try:
-            view.UseColorPaletteForBackground = 0
-        except AttributeError:
-            pass
-        view.ViewTime = list(relax.TimestepValues)[-1]
+        view = rockdem.white_view([800, 1000], time=list(relax.TimestepValues)[-1])
         rockdem.show_particles(relax, view)
         view.CameraPosition = [0.09, -0.07, 0.06]
         view.CameraFocalPoint = [0.01, 0.01, 0.015]

@@ -65,24 +65,23 @@ def main():
           "in discs (a crack in two discs counted twice); table: %s"
           % (rows, largest, 100.0 * largest / width, width, 100.0 * in_discs / max(broken, 1), broken, table))
 
-    view = CreateView("RenderView")
-    view.ViewSize = [1000, 1200]
-    view.OrientationAxesVisibility = 1
-    view.Background = [1.0, 1.0, 1.0]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = rockdem.white_view([1000, 1200])
     grains = rockdem.show_particles(model, view, color_by=None)
     grains.ColorArrayName = [None, ]
     grains.AmbientColor = grains.DiffuseColor = [0.7, 0.7, 0.7]
     grains.Opacity = 0.12
-    rockdem.show_fractures(dfn, view)
-    view.CameraPosition = [0.19, -0.16, 0.14]
-    view.CameraFocalPoint = [0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])]
-    view.CameraViewUp = [0, 0, 1] if bounds[5] - bounds[4] > 1e-9 else [0, 1, 0]
-    if bounds[5] - bounds[4] <= 0.1 * width:  # a 2D section: look down the slab axis
-        view.CameraPosition = [view.CameraFocalPoint[0], view.CameraFocalPoint[1], 1.0]
+    discs = rockdem.show_fractures(dfn, view)
+    centre = [0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])]
+    view.CameraFocalPoint = centre
+    if bounds[5] - bounds[4] <= 0.1 * width:  # a 2D section: look down the slab axis, Y up
+        view.CameraPosition = [centre[0], centre[1], centre[2] + 1.0]
+        view.CameraViewUp = [0, 1, 0]
+        discs.SetRepresentationType("Wireframe")  # seen edge-on: the traces, drawn thick
+        discs.LineWidth = 3.0
+        discs.Opacity = 1.0
+    else:
+        view.CameraPosition = [0.19, -0.16, 0.14]
+        view.CameraViewUp = [0, 0, 1]
     view.ResetCamera()
     Render(view)
     picture = prefix + ".png"

@@ -60,6 +60,27 @@ const Model& cementedPack()
 
 Vec3 boxCentre(const Model& m) { return m.domain.origin + 0.5 * m.domain.size; }
 
+/// A grown, cemented 2D section (discs in XY, slab `size.z()`), 3,000 placed discs of
+/// radii [minimumSize, maximumSize], seed 5; a 2D grown pack is looser, so the near
+/// neighbours are bonded too (Gap Tolerance 1).
+Model cementedSection2D(const Vec3& size, double minimumSize, double maximumSize)
+{
+  Model m;
+  m.domain.section2D = true;
+  m.domain.size = size;
+  PackParameters p;
+  p.initialElements = 3000;
+  p.minimumSize = minimumSize;
+  p.maximumSize = maximumSize;
+  p.randomSeed = 5;
+  buildPack(m, p);
+  growElements(m);
+  CementParameters c;
+  c.gapTolerance = 1.0;
+  cement(m, c);
+  return m;
+}
+
 std::unordered_map<std::int64_t, std::size_t> slots(const Model& m)
 {
   std::unordered_map<std::int64_t, std::size_t> s;
@@ -331,19 +352,7 @@ TEST(Fractures, TensileAndShearSetsStaySeparate)
 // trace has length L = sqrt(12 l2), its polygon is the L x slab rectangle.
 TEST(Fractures, Section2DTraceIsAVerticalPlane)
 {
-  Model pack;
-  pack.domain.section2D = true;
-  pack.domain.size = Vec3(0.06, 0.06, 0.002);
-  PackParameters p;
-  p.initialElements = 3000;
-  p.minimumSize = 0.0008;
-  p.maximumSize = 0.0012;
-  p.randomSeed = 5;
-  buildPack(pack, p);
-  growElements(pack);
-  CementParameters c;
-  c.gapTolerance = 1.0; // a 2D grown pack is looser: bond the near neighbours too
-  cement(pack, c);
+  const Model pack = cementedSection2D(Vec3(0.06, 0.06, 0.002), 0.0008, 0.0012);
   const double d = meanParticleDiameter(pack);
   const Vec3 centre = boxCentre(pack);
   for (double az : { 30.0, 120.0 }) {
@@ -1019,19 +1028,7 @@ TEST(Fractures, BandScanReadsAThickBandThroughDiffuseDamage)
 // band through it, the discs are the band, not one disc fitted to every crack.
 TEST(Fractures, Section2DDamageCloudIsNotOneDisc)
 {
-  Model m;
-  m.domain.section2D = true;
-  m.domain.size = Vec3(0.03, 0.09, 0.002);
-  PackParameters p;
-  p.initialElements = 3000;
-  p.minimumSize = 0.0005;
-  p.maximumSize = 0.00075;
-  p.randomSeed = 5;
-  buildPack(m, p);
-  growElements(m);
-  CementParameters c;
-  c.gapTolerance = 1.0;
-  cement(m, c);
+  Model m = cementedSection2D(Vec3(0.03, 0.09, 0.002), 0.0005, 0.00075);
   const double d = meanParticleDiameter(m);
   const Vec3 centre = boxCentre(m);
   const Vec3 n = normalFromDipAzimuth(90.0, 100.0); // a steep band, 10 deg from the long axis Y
