@@ -49,6 +49,14 @@ private:
 };
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
+
+/// A pair whose squared distance d2 exceeds kApart * (r_i + r_j)^2, each product rounded,
+/// does not touch, and the pair loop would have found that from the square root too:
+/// with s = r_i + r_j (a double) and u = 2^-53, the two roundings leave the right-hand
+/// side above (1 + 2^-50)(1 - u)^2 s^2 > s^2, so sqrt(d2) > s exactly, its correctly
+/// rounded value is >= s, and the overlap s - distance is <= 0. Pairs between the bounds
+/// take the square root as before, so the rejection changes no bit.
+constexpr double kApart = 1.0 + 0x1p-50;
 } // namespace
 
 CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double timestep)
@@ -100,6 +108,7 @@ CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double ti
     model.walls = walls;
     state_.pairSpring = saved.pairSpring;
     state_.pairRolling = saved.pairRolling;
+    state_.pairLive = saved.pairLive;
     state_.wallSpring = saved.wallSpring;
     state_.wallRolling = saved.wallRolling;
   }
@@ -231,6 +240,7 @@ void CpuBackend::rebuildNeighbours(bool importModelHistory)
   im.pairTorqueI.assign(pairs, Vec3::Zero());
   im.pairTorqueJ.assign(pairs, Vec3::Zero());
   im.pairNormal.assign(pairs, 0.0);
+  im.pairLive.assign(pairs, 1); // the first evaluation clears the flag where there is no state
   im.positionAtBuild = p.position;
   rebuildWallContacts(!importModelHistory);
 
@@ -295,6 +305,10 @@ void CpuBackend::rebuildNeighbours(bool importModelHistory)
     }
   }
 
+  if (2 * pairs > std::numeric_limits<std::uint32_t>::max()) {
+    throw InputError("The neighbour list has " + std::to_string(pairs) +
+                     " pairs; the solver's gather lists hold at most 2^31.");
+  }
   // Gather lists: each particle's pairs in order of partner slot (a fixed order).
   im.adjacencyStart.assign(n + 1, 0);
   for (std::size_t k = 0; k < pairs; ++k) {
@@ -303,15 +317,15 @@ void CpuBackend::rebuildNeighbours(bool importModelHistory)
   }
   std::partial_sum(im.adjacencyStart.begin(), im.adjacencyStart.end(), im.adjacencyStart.begin());
   im.adjacency.assign(2 * pairs, 0);
-  std::vector<std::size_t> fill(im.adjacencyStart.begin(), im.adjacencyStart.end() - 1);
+  std::vector<std::uint32_t> fill(im.adjacencyStart.begin(), im.adjacencyStart.end() - 1);
   // Pairs are sorted by (i, j): visiting them in order appends, for each particle, the
   // partners below it (as j) in increasing i, then the partners above it (as i) in
   // increasing j. Both runs are sorted, and the first precedes the second.
   for (std::size_t k = 0; k < pairs; ++k) {
-    im.adjacency[fill[im.pairJ[k]]++] = 2 * k + 1;
+    im.adjacency[fill[im.pairJ[k]]++] = static_cast<std::uint32_t>(2 * k + 1);
   }
   for (std::size_t k = 0; k < pairs; ++k) {
-    im.adjacency[fill[im.pairI[k]]++] = 2 * k;
+    im.adjacency[fill[im.pairI[k]]++] = static_cast<std::uint32_t>(2 * k);
   }
   decideParallel(); // for the steps on this list
 }
@@ -454,65 +468,95 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
 
   const MinimumImage separationOf(d);
 
-  // 1. Each pair once.
+  // 1. Each pair once. The hot loops read the arrays through raw pointers: through the
+  // vectors' operator[], the arrays' addresses were reloaded after every store.
+  const Vec3* const position = p.position.data();
+  const Vec3* const velocity = p.velocity.data();
+  const Vec3* const spin = p.angularVelocity.data();
+  const Vec3* const lastForce = p.force.data();
+  const double* const radius = p.radius.data();
+  const double* const inverseMass = im.inverseMass.data();
+  const std::uint32_t* const pairI = im.pairI.data();
+  const std::uint32_t* const pairJ = im.pairJ.data();
+  const ContactConstants* const pairConstants = im.pairConstants.data();
+  Vec3* const pairSpring = im.pairSpring.data();
+  Vec3* const pairRolling = im.pairRolling.data();
+  Vec3* const pairForce = im.pairForce.data();
+  Vec3* const pairTorqueI = im.pairTorqueI.data();
+  Vec3* const pairTorqueJ = im.pairTorqueJ.data();
+  double* const pairNormal = im.pairNormal.data();
+  std::uint8_t* const pairLive = im.pairLive.data();
+  std::uint8_t* const touching = im.touching.data();
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long k = 0; k < pairs; ++k) {
-    const std::uint32_t i = im.pairI[k];
-    const std::uint32_t j = im.pairJ[k];
-    const Vec3 branch = separationOf(p.position[i], p.position[j]); // from i to j
-    const double distance = branch.norm();
-    const double overlap = p.radius[i] + p.radius[j] - distance;
-    if (overlap <= 0.0 || distance == 0.0) {
-      if (im.pairNormal[k] != 0.0 || !im.pairSpring[k].isZero(0.0) ||
-          (rolling && !im.pairRolling[k].isZero(0.0))) {
-        // The contact just ended: clear its force and history (once, not every step).
-        im.pairForce[k].setZero();
-        im.pairTorqueI[k].setZero();
-        im.pairTorqueJ[k].setZero();
-        im.pairNormal[k] = 0.0;
-        im.pairSpring[k].setZero();
-        if (rolling) {
-          im.pairRolling[k].setZero();
+    const std::uint32_t i = pairI[k];
+    const std::uint32_t j = pairJ[k];
+    const Vec3 branch = separationOf(position[i], position[j]); // from i to j
+    const double reach = radius[i] + radius[j];
+    const double distance2 = branch.squaredNorm();
+    // Most neighbour pairs of a settled pack do not touch (88 % at 100k): those far enough
+    // apart are rejected on the squared distance, before the square root (bit for bit:
+    // see kApart). The others take the distance and the overlap as before.
+    const bool apart = distance2 > kApart * (reach * reach);
+    const double distance = apart ? 0.0 : std::sqrt(distance2); // = branch.norm()
+    const double overlap = reach - distance;
+    if (apart || overlap <= 0.0 || distance == 0.0) {
+      // A pair without state (pairLive 0) has nothing to clear: one byte read instead
+      // of its normal force and springs.
+      if (pairLive[k]) {
+        if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
+            (rolling && !pairRolling[k].isZero(0.0))) {
+          // The contact just ended: clear its force and history (once, not every step).
+          pairForce[k].setZero();
+          pairTorqueI[k].setZero();
+          pairTorqueJ[k].setZero();
+          pairNormal[k] = 0.0;
+          pairSpring[k].setZero();
+          if (rolling) {
+            pairRolling[k].setZero();
+          }
         }
+        pairLive[k] = 0;
       }
       continue;
     }
     const Vec3 normal = branch / distance;
-    const double armI = p.radius[i] - 0.5 * overlap; // m, centre to contact point
-    const double armJ = p.radius[j] - 0.5 * overlap;
+    const double armI = radius[i] - 0.5 * overlap; // m, centre to contact point
+    const double armJ = radius[j] - 0.5 * overlap;
     // Slip over the step uses the half-step velocities (exact for the displacement
     // increment); the viscous damping uses the full-step velocities, predicted from the
     // last forces, so that restitution does not drift with the number of steps per impact.
-    const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
-      p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
+    const Vec3 relativeVelocity = velocity[i] - velocity[j] +
+      spin[i].cross(armI * normal) + spin[j].cross(armJ * normal);
     const Vec3 predictedVelocity = relativeVelocity +
-      predict * (im.inverseMass[i] * p.force[i] - im.inverseMass[j] * p.force[j]);
+      predict * (inverseMass[i] * lastForce[i] - inverseMass[j] * lastForce[j]);
     const double approachSpeed = predictedVelocity.dot(normal);
-    const NormalResponse response = normalResponse(cm.law, im.pairConstants[k], overlap, approachSpeed);
+    const NormalResponse response = normalResponse(cm.law, pairConstants[k], overlap, approachSpeed);
     const double fn = response.force;
     const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
     const Vec3 ft =
-      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, im.pairSpring[k]);
+      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, pairSpring[k]);
     Vec3 torqueI = armI * normal.cross(ft);
     Vec3 torqueJ = armJ * normal.cross(ft);
     if (rolling) {
       const PairProperties pair =
-        pairProperties(cm, p.radius[i], massOf(i), p.radius[j], massOf(j), planar, slab);
-      const Vec3 roll = inPlane(p.angularVelocity[i] - p.angularVelocity[j], normal) * dt;
-      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, im.pairRolling[k]);
+        pairProperties(cm, radius[i], massOf(i), radius[j], massOf(j), planar, slab);
+      const Vec3 roll = inPlane(spin[i] - spin[j], normal) * dt;
+      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, pairRolling[k]);
       torqueI += mr;
       torqueJ -= mr;
     }
-    im.pairForce[k] = -fn * normal + ft;
-    im.pairTorqueI[k] = torqueI;
-    im.pairTorqueJ[k] = torqueJ;
-    im.pairNormal[k] = fn;
+    pairForce[k] = -fn * normal + ft;
+    pairTorqueI[k] = torqueI;
+    pairTorqueJ[k] = torqueJ;
+    pairNormal[k] = fn;
+    pairLive[k] = 1;
     if (fn != 0.0) {
       // Two threads may mark the same particle: both write 1.
 #pragma omp atomic write
-      im.touching[i] = 1;
+      touching[i] = 1;
 #pragma omp atomic write
-      im.touching[j] = 1;
+      touching[j] = 1;
     }
   }
 
@@ -593,25 +637,29 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   const long count = static_cast<long>(n);
   const bool anyBonds = !im.bondI.empty();
   const bool anyExternal = im.externalForce.size() == n; // the membrane's pushes
+  const double* const mass = p.mass.data();
+  const std::uint32_t* const adjacencyStart = im.adjacencyStart.data();
+  const std::uint32_t* const adjacency = im.adjacency.data();
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
-    Vec3 force = p.mass[i] * gravity;
+    Vec3 force = mass[i] * gravity;
     Vec3 torque = Vec3::Zero();
     // Without a touching pair (none has a non-zero normal force) the list adds nothing.
-    const std::size_t pairEnd = im.touching[i] ? im.adjacencyStart[i + 1] : im.adjacencyStart[i];
-    im.touching[i] = 0;
-    for (std::size_t e = im.adjacencyStart[i]; e < pairEnd; ++e) {
-      const std::size_t k = im.adjacency[e] >> 1;
-      if (im.pairNormal[k] == 0.0) {
+    const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
+    touching[i] = 0;
+    for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
+      const std::uint32_t entry = adjacency[e];
+      const std::uint32_t k = entry >> 1;
+      if (pairNormal[k] == 0.0) {
         continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
       }
-      if (im.adjacency[e] & 1u) {
-        force -= im.pairForce[k];
-        torque += im.pairTorqueJ[k];
+      if (entry & 1u) {
+        force -= pairForce[k];
+        torque += pairTorqueJ[k];
       } else {
-        force += im.pairForce[k];
-        torque += im.pairTorqueI[k];
+        force += pairForce[k];
+        torque += pairTorqueI[k];
       }
     }
     for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
@@ -812,33 +860,42 @@ void CpuBackend::step()
   // Half kick with the forces of the last step, then drift; note whether any particle
   // has moved half the skin since the neighbour list was built.
   bool stale = false;
+  Vec3* const position = p.position.data(); // raw pointers, as in computeForces
+  Vec3* const velocity = p.velocity.data();
+  Vec3* const spin = p.angularVelocity.data();
+  Vec3* const displacement = p.displacement.data();
+  const Vec3* const force = p.force.data();
+  const Vec3* const torque = p.torque.data();
+  const Vec3* const positionAtBuild = im.positionAtBuild.data();
+  const double* const inverseMass = im.inverseMass.data();
+  const double* const inverseInertia = im.inverseInertia.data();
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
   for (long li = 0; li < count; ++li) {
     const std::size_t i = static_cast<std::size_t>(li);
     // A fixed particle is kinematic: forces do not change its velocity (inverse mass
     // 0), but it moves with the velocity it was given (at rest unless prescribed).
-    p.velocity[i] += (half * im.inverseMass[i]) * p.force[i];
-    p.angularVelocity[i] += (half * im.inverseInertia[i]) * p.torque[i];
+    velocity[i] += (half * inverseMass[i]) * force[i];
+    spin[i] += (half * inverseInertia[i]) * torque[i];
     if (planar) {
-      p.velocity[i].z() = 0.0;
-      p.angularVelocity[i].x() = 0.0;
-      p.angularVelocity[i].y() = 0.0;
+      velocity[i].z() = 0.0;
+      spin[i].x() = 0.0;
+      spin[i].y() = 0.0;
     }
-    const Vec3 move = dt * p.velocity[i];
-    p.position[i] += move;
-    p.displacement[i] += move;
+    const Vec3 move = dt * velocity[i];
+    position[i] += move;
+    displacement[i] += move;
     for (int k = 0; anyPeriodic && k < 3; ++k) {
       if (periodic[k]) {
         const double lo = d.origin[k];
         const double length = d.size[k];
-        if (p.position[i][k] < lo) {
-          p.position[i][k] += length;
-        } else if (p.position[i][k] >= lo + length) {
-          p.position[i][k] -= length;
+        if (position[i][k] < lo) {
+          position[i][k] += length;
+        } else if (position[i][k] >= lo + length) {
+          position[i][k] -= length;
         }
       }
     }
-    if (separationOf(im.positionAtBuild[i], p.position[i]).squaredNorm() > limit2) {
+    if (separationOf(positionAtBuild[i], position[i]).squaredNorm() > limit2) {
       stale = true;
     }
   }

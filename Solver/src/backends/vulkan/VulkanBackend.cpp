@@ -587,6 +587,7 @@ std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
   st.pairTorqueI.resize(pairs_);
   st.pairTorqueJ.resize(pairs_);
   st.pairNormal.resize(pairs_);
+  st.pairLive.assign(pairs_, 1); // the device keeps no such flag: the host checks every pair
   st.wallSlot.resize(wallEntries_);
   st.wallConstants.resize(wallEntries_);
   st.wallSpring.resize(wallEntries_);
