@@ -653,14 +653,12 @@ std::vector<std::vector<std::size_t>> scanBands(const std::vector<Crack>& cracks
     std::vector<double> bonds, broken;
     for (const Vec3& n : normals) {
       double smin = n.dot(box.front());
-      for (const Vec3& m : box) {
-        smin = std::min(smin, n.dot(m));
-      }
-      smin -= thickness;
       double smax = smin;
       for (const Vec3& m : box) {
+        smin = std::min(smin, n.dot(m));
         smax = std::max(smax, n.dot(m));
       }
+      smin -= thickness;
       const std::size_t bins = static_cast<std::size_t>((smax - smin) / step) + 2;
       bonds.assign(bins, 0.0);
       broken.assign(bins, 0.0);
@@ -991,11 +989,8 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
           }
         }
         const auto bands = scanBands(cracks, rest, segments.mid, distance, params.bandSignificance, minimum,
-          section2D, [&](const std::vector<std::size_t>& part) { return grownDisc(part, nullptr); },
+          section2D, [&](const std::vector<std::size_t>& part) { return grownDisc(part, &found); }, // the disc, once
           [&](const std::vector<std::size_t>& slab) { return connectedParts(cracks, slab, distance, shareDistance); });
-        for (const auto& part : bands) {
-          grownDisc(part, &found);
-        }
         c.scannedClusters += bands.empty() ? 0 : 1;
       }
       if (found.empty()) {

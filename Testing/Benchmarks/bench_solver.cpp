@@ -289,6 +289,12 @@ std::pair<double, double> cpuSeconds()
   return { machine, self };
 }
 
+/// Cores other processes kept busy between two cpuSeconds() readings `elapsed` s apart.
+double othersBusy(const std::pair<double, double>& before, const std::pair<double, double>& after, double elapsed)
+{
+  return std::max(0.0, ((after.first - before.first) - (after.second - before.second)) / elapsed);
+}
+
 // ---------------------------------------------------------------------------------------
 // Models
 
@@ -509,7 +515,7 @@ int runThroughput(const Options& o)
           peak = peakResidentBytes();
           if (rep == 0 || elapsed < seconds) {
             seconds = elapsed;
-            others = std::max(0.0, ((cpu1.first - cpu0.first) - (cpu1.second - cpu0.second)) / elapsed);
+            others = othersBusy(cpu0, cpu1, elapsed);
           }
           contacts = sim.diagnostics().contacts;
           kinetic = sim.diagnostics().kineticEnergy;
@@ -997,7 +1003,7 @@ int runReadPack(const Options& o)
       const auto cpu1 = cpuSeconds();
       if (rep == 0 || elapsed < best) {
         best = elapsed;
-        others = std::max(0.0, ((cpu1.first - cpu0.first) - (cpu1.second - cpu0.second)) / elapsed);
+        others = othersBusy(cpu0, cpu1, elapsed);
       }
       contacts = sim.diagnostics().contacts;
       kinetic = sim.diagnostics().kineticEnergy;

@@ -31,26 +31,33 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// A grown, cemented pack in a 24 mm cube (about 16 mean diameters a side).
+/// Places `elements` particles of radii [minimumSize, maximumSize] (seed `seed`) in the
+/// domain of `m`, grows them and cements them with Gap Tolerance `gap`. A grown pack touches
+/// only its nearest neighbours: a generous gap tolerance bonds the near neighbours too, a
+/// dense bond network for geometry tests that run no physics.
+std::size_t growAndCement(Model& m, int elements, double minimumSize, double maximumSize, int seed, double gap)
+{
+  PackParameters p;
+  p.initialElements = elements;
+  p.minimumSize = minimumSize;
+  p.maximumSize = maximumSize;
+  p.randomSeed = seed;
+  buildPack(m, p);
+  growElements(m);
+  CementParameters c;
+  c.gapTolerance = gap;
+  return cement(m, c).bonds;
+}
+
+/// A grown, cemented pack in a 24 mm cube (about 16 mean diameters a side, about six
+/// bonds a particle).
 const Model& cementedPack()
 {
   static const Model m = [] {
     Model out;
     out.domain.size = Vec3(0.024, 0.024, 0.024);
     out.material.youngsModulus = 1e8;
-    PackParameters p;
-    p.initialElements = 6000;
-    p.minimumSize = 0.0005;
-    p.maximumSize = 0.00075;
-    p.randomSeed = 7;
-    buildPack(out, p);
-    growElements(out);
-    // A grown pack touches only its nearest neighbours: a generous gap tolerance bonds
-    // the near neighbours too (about six bonds a particle), a dense bond network for
-    // geometry tests that run no physics.
-    CementParameters c;
-    c.gapTolerance = 0.6;
-    const std::size_t bonds = cement(out, c).bonds;
+    const std::size_t bonds = growAndCement(out, 6000, 0.0005, 0.00075, 7, 0.6);
     std::printf("[pack] %zu particles, %zu bonds, mean diameter %.4g m\n", out.particles.size(), bonds,
       meanParticleDiameter(out));
     return out;
@@ -61,23 +68,13 @@ const Model& cementedPack()
 Vec3 boxCentre(const Model& m) { return m.domain.origin + 0.5 * m.domain.size; }
 
 /// A grown, cemented 2D section (discs in XY, slab `size.z()`), 3,000 placed discs of
-/// radii [minimumSize, maximumSize], seed 5; a 2D grown pack is looser, so the near
-/// neighbours are bonded too (Gap Tolerance 1).
+/// radii [minimumSize, maximumSize], seed 5; a 2D grown pack is looser, so Gap Tolerance 1.
 Model cementedSection2D(const Vec3& size, double minimumSize, double maximumSize)
 {
   Model m;
   m.domain.section2D = true;
   m.domain.size = size;
-  PackParameters p;
-  p.initialElements = 3000;
-  p.minimumSize = minimumSize;
-  p.maximumSize = maximumSize;
-  p.randomSeed = 5;
-  buildPack(m, p);
-  growElements(m);
-  CementParameters c;
-  c.gapTolerance = 1.0;
-  cement(m, c);
+  growAndCement(m, 3000, minimumSize, maximumSize, 5, 1.0);
   return m;
 }
 
@@ -717,16 +714,7 @@ TEST(SeedFractures, PeriodicSeamBondsAreSeeded)
   Model m;
   m.domain.size = Vec3(0.02, 0.02, 0.02);
   m.domain.periodic = { { true, false, false } };
-  PackParameters p;
-  p.initialElements = 2000;
-  p.minimumSize = 0.0005;
-  p.maximumSize = 0.00075;
-  p.randomSeed = 11;
-  buildPack(m, p);
-  growElements(m);
-  CementParameters c;
-  c.gapTolerance = 0.6;
-  cement(m, c);
+  growAndCement(m, 2000, 0.0005, 0.00075, 11, 0.6);
   const double x0 = 0.0004; // inside the low X face
   const FracturePolygon wall = { Vec3(x0, -1, -1), Vec3(x0, 1, -1), Vec3(x0, 1, 1), Vec3(x0, -1, 1) };
   const auto slot = slots(m);
