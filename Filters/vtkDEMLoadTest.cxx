@@ -483,6 +483,7 @@ dem::LoadTestSettings vtkDEMLoadTest::PressSettings() const
   press.sampleInterval = this->SampleInterval;
   press.gripLength = this->GripLength;
   press.platenFriction = this->PlatenFriction;
+  press.consolidationDamping = this->ConsolidationDamping;
   press.confinement = static_cast<dem::Confinement>(this->Confinement);
   return press;
 }
@@ -808,7 +809,8 @@ std::string vtkDEMLoadTest::RunSettings()
        << " continue " << this->ContinueTest << " interval " << this->FrameInterval << " batch "
        << (this->FrameInterval > 0.0 ? 0 : this->StepsPerBatch) << " law " << this->ContactLaw
        << " safety " << this->TimestepSafety << " timestep " << this->RequestedTimestep
-       << " damping " << this->SettlingDamping << " gravity " << this->Gravity[0] << " "
+       << " damping " << this->SettlingDamping << " consolidation damping " << this->ConsolidationDamping
+       << " gravity " << this->Gravity[0] << " "
        << this->Gravity[1] << " " << this->Gravity[2];
   return text.str();
 }
@@ -1245,6 +1247,7 @@ void vtkDEMLoadTest::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleInterval: " << this->SampleInterval << "\n";
   os << indent << "GripLength: " << this->GripLength << "\n";
   os << indent << "PlatenFriction: " << this->PlatenFriction << "\n";
+  os << indent << "ConsolidationDamping: " << this->ConsolidationDamping << "\n";
   os << indent << "Confinement: " << this->Confinement << "\n";
   os << indent << "HistoryFile: " << (this->HistoryFile ? this->HistoryFile : "(none)") << "\n";
   os << indent << "CheckpointFile: " << (this->CheckpointFile ? this->CheckpointFile : "(none)") << "\n";

@@ -142,6 +142,13 @@ public:
   ///@}
 
   ///@{
+  /// Cundall local damping while a Triaxial or Isotropic test consolidates, dimensionless,
+  /// [0, 1) (default 0.7); the shear stage runs at Settling Damping.
+  vtkSetMacro(ConsolidationDamping, double);
+  vtkGetMacro(ConsolidationDamping, double);
+  ///@}
+
+  ///@{
   /// Optional CSV file the history is written to after every update (empty: none).
   vtkSetStringMacro(HistoryFile);
   vtkGetStringMacro(HistoryFile);
@@ -348,6 +355,7 @@ protected:
   int SampleInterval = 100;
   double GripLength = 1.0;
   double PlatenFriction = 0.0;
+  double ConsolidationDamping = 0.7;
   int Confinement = 0;
   char* HistoryFile = nullptr;
   char* CheckpointFile = nullptr;

@@ -77,6 +77,10 @@ void validate(const LoadTestSettings& s)
     requirePositive("Grip Length", s.gripLength, "largest particle diameters");
   }
   requireInRange("Platen Friction", s.platenFriction, 0.0, 1.0);
+  if (!(s.consolidationDamping >= 0.0 && s.consolidationDamping < 1.0)) {
+    throw InputError("Consolidation Damping = " + formatValue(s.consolidationDamping) +
+                     " is out of range: valid range is [0, 1).");
+  }
   if (s.confinement == Confinement::Membrane && s.mode != TestMode::Triaxial && s.mode != TestMode::Isotropic) {
     throw InputError(std::string("Confinement = Membrane is out of range for Mode = ") + modeName(s.mode) +
       ": the membrane confines a Triaxial or Isotropic test (valid values here: Rigid Walls; a " +
@@ -97,7 +101,16 @@ bool operator==(const LoadTestSettings& a, const LoadTestSettings& b)
   return a.mode == b.mode && a.confinement == b.confinement && a.axis == b.axis && a.confiningStress == b.confiningStress &&
     a.strainRate == b.strainRate && a.maxStrain == b.maxStrain && a.servoAlpha == b.servoAlpha &&
     a.sampleInterval == b.sampleInterval && a.settleTolerance == b.settleTolerance &&
-    a.gripLength == b.gripLength && a.platenFriction == b.platenFriction;
+    a.gripLength == b.gripLength && a.platenFriction == b.platenFriction &&
+    a.consolidationDamping == b.consolidationDamping;
+}
+
+double localDamping(const LoadTestState& test, double settlingDamping)
+{
+  const TestMode mode = test.settings.mode;
+  const bool consolidating = test.stage == TestStage::Consolidate &&
+    (mode == TestMode::Triaxial || mode == TestMode::Isotropic);
+  return consolidating ? test.settings.consolidationDamping : settlingDamping;
 }
 
 bool continuesTest(const LoadTestState& test, const LoadTestSettings& settings)

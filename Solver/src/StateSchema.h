@@ -218,6 +218,13 @@ void visitModel(IO& io, Model& m)
   } else {
     ts.platenFriction = 0.0; // files written before Platen Friction: frictionless platens
   }
+  if (io.has("test/settings/consolidation_damping")) {
+    io.f64("test/settings/consolidation_damping", ts.consolidationDamping, "1");
+  } else {
+    // files written before Consolidation Damping: the whole test ran at Settling Damping
+    // (read above, /settings/solver)
+    ts.consolidationDamping = m.solver.settlingDamping;
+  }
   if (io.has("test/settings/confinement")) {
     io.enumeration("test/settings/confinement", ts.confinement, static_cast<int>(Confinement::Membrane));
   } else {

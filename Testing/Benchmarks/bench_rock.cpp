@@ -41,6 +41,10 @@
 //     test history), which must be 0.
 //   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --servo-alpha A; --max-steps N
 //     stops a test after N steps; --to-max-strain: the stability runs go on to Max Strain.
+//   --consolidation-damping D: a triaxial test brings the specimen to sigma3 at Settling
+//     Damping D and shears at --damping (the two stages' damping set apart; each triaxial
+//     line also prints the bonds broken when the shear started). --ucs P: the triaxial
+//     series' confining stresses are fractions of P (Pa) when --tests has no ucs.
 //   --min-peak-strain S: the stop rule (the stress fallen to 70 %, triaxial 80 %, of its peak)
 //     counts a peak only at an axial strain of S or more (default 1 % of --max-strain), so
 //     that the stress oscillation at the start of an undamped test does not end it.
@@ -123,12 +127,14 @@ struct Options {
   double inertialTarget = 0.0;  // > 0: the suggestion at this inertial number instead of the engine's target
   double safety = 0.3;
   double damping = 0.7;
+  double consolidationDamping = -1.0; // >= 0: Settling Damping while a triaxial test consolidates (then --damping)
   double maxStrain = 0.03;
   double minPeakStrain = -1.0;  // the stop rule's smallest peak strain; < 0: 1 % of maxStrain
   double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
   double bondModulus = 0.0;     // Pa; 0: --modulus
   double servoAlpha = 0.5;      // Servo Alpha of the triaxial tests
   double maxSteps = 0.0;        // > 0: a test stops after this many steps
+  double ucs = 0.0;             // > 0: the triaxial series' reference UCS (Pa), when --tests has no ucs
   double triaxialStop = 0.8;    // a triaxial test stops when its stress falls to this fraction of the peak
   bool probeToMaxStrain = false; // --tests stability: run every test to Max Strain (no stop after the peak)
   std::vector<double> safeties{ 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5 }; // --tests stability
@@ -159,11 +165,11 @@ Options parse(int argc, char** argv)
     { "--tensile", &o.tensile }, { "--cohesion", &o.cohesion }, { "--bond-friction", &o.bondFriction },
     { "--moment-contribution", &o.beta }, { "--softening", &o.softening },
     { "--scatter", &o.scatter }, { "--strain-per-step", &o.strainPerStep }, { "--safety", &o.safety },
-    { "--damping", &o.damping }, { "--max-strain", &o.maxStrain },
+    { "--damping", &o.damping }, { "--consolidation-damping", &o.consolidationDamping }, { "--max-strain", &o.maxStrain },
     { "--platen-friction", &o.platenFriction }, { "--rate-factor", &o.rateFactor },
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
     { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
-    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop },
+    { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop }, { "--ucs", &o.ucs },
     { "--carve-margin", &o.carveMargin }, { "--slab", &o.slab } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -399,6 +405,7 @@ struct TestResult {
   double discShare = 0.0;     // broken bonds in discs / broken bonds
   double strainAt70 = 0.0;
   std::size_t brokenAtPeak = 0; // broken bonds at the sample of the peak stress
+  std::size_t brokenAtShear = 0; // broken bonds when the shear stage starts (after the consolidation)
   std::size_t softeningAtPeak = 0; // intact bonds past their strength (damage > 0) then
   std::string damage;           // damageBreakdown at the end
   std::string earlyBreaks;      // failureCauses: what broke the first 10 % of the breaks at the peak
@@ -782,6 +789,10 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     return u;
   };
+  const bool dampedConsolidation = o.consolidationDamping >= 0.0 && m.test.stage == TestStage::Consolidate;
+  if (dampedConsolidation) {
+    m.solver.settlingDamping = o.consolidationDamping;
+  }
   Simulation run(m);
   if (failed) {
     failed->surface.clear();
@@ -800,6 +811,12 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     if (m.test.stage != TestStage::Shear) {
       continue;
+    }
+    if (strain.empty()) {
+      r.brokenAtShear = countBonds(m.bonds).broken;
+      if (dampedConsolidation) {
+        m.solver.settlingDamping = o.damping;
+      }
     }
     if (failed && failed->toShear.empty()) {
       failed->toShear = displacementSinceStart(); // the first sample of the shear stage
@@ -1278,7 +1295,7 @@ int main(int argc, char** argv)
     std::fflush(stdout);
     return u.peak;
   };
-  double ucs = 0.0;          // the box's (the triaxial series' reference)
+  double ucs = o.ucs;        // the box's (the triaxial series' reference); --ucs when not measured here
   double cylinderUcs = 0.0;
   if (wants(o, "ucs")) {
     if (onBox) {
@@ -1420,9 +1437,10 @@ int main(int argc, char** argv)
       const TestResult t = runTest(m, TestMode::Triaxial, f * ucs, o, false);
       s3.push_back(f * ucs);
       s1.push_back(t.peak);
-      std::printf("triaxial sigma3 %.4g Pa (%.0f %% UCS): %s sigma1 %.4g Pa at strain %.4g (%lld steps, %.1f s)\n",
+      std::printf("triaxial sigma3 %.4g Pa (%.0f %% UCS): %s sigma1 %.4g Pa at strain %.4g (%lld steps, %.1f s); "
+                  "%zu bonds broken when the shear started, %zu at the peak\n",
                   f * ucs, 100 * f, t.peaked ? "peak" : "no peak within Max Strain: largest", t.peak, t.peakStrain,
-                  static_cast<long long>(t.steps), t.seconds);
+                  static_cast<long long>(t.steps), t.seconds, t.brokenAtShear, t.brokenAtPeak);
       std::fflush(stdout);
     }
     const double b = slope(s3, s1);

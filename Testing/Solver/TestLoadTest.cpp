@@ -10,6 +10,7 @@
 #include "dem/Simulation.h"
 #include "DynamicsFixtures.h"
 #include "Specimens.h"
+#include "StateFixtures.h"
 
 #include <gtest/gtest.h>
 
@@ -375,6 +376,80 @@ TEST(Press, PlatenFrictionOutOfRangeIsNamed)
   }
   s.platenFriction = 1.0;
   EXPECT_NO_THROW(startLoadTest(m, s));
+}
+
+// Consolidation Damping out of [0, 1) (or NaN) is refused, naming the parameter, its value
+// and the valid range.
+TEST(Press, ConsolidationDampingOutOfRangeIsNamed)
+{
+  Model m = specimen(100, 0.02, 0.001, 0.0015);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  for (double bad : { -0.1, 1.0, std::nan("") }) {
+    s.consolidationDamping = bad;
+    try {
+      startLoadTest(m, s);
+      FAIL() << "Consolidation Damping " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Consolidation Damping = "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is out of range: valid range is [0, 1)"), std::string::npos) << e.what();
+    }
+  }
+  s.consolidationDamping = 0.0;
+  EXPECT_NO_THROW(startLoadTest(m, s));
+}
+
+// Consolidation Damping (LoadTest.md): a Triaxial test brings the specimen to the confining
+// stress at it and shears at Settling Damping. Two runs that differ only in Settling Damping
+// (0.7 and 0), both consolidating at 0.7, are the same bit for bit at every sample until the
+// shear starts, and differ once it runs; a run consolidating at 0 differs from the start.
+TEST(Press, TriaxialConsolidatesAtConsolidationDampingAndShearsAtSettlingDamping)
+{
+  Model base = specimen(400, 0.016, 0.0008, 0.0012, 3);
+  consolidate(base, 2e4);
+  ASSERT_GT(cement(base, testCement()).bonds, 500u);
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.confiningStress = 2e5;
+  s.strainRate = 1.0;
+  s.maxStrain = 0.01;
+  s.sampleInterval = 50;
+  s.consolidationDamping = 0.7;
+  Model damped = base;
+  damped.solver.settlingDamping = 0.7;
+  startLoadTest(damped, s);
+  Model undamped = base;
+  undamped.solver.settlingDamping = 0.0;
+  startLoadTest(undamped, s);
+  Model raw = base; // consolidates undamped too
+  raw.solver.settlingDamping = 0.0;
+  s.consolidationDamping = 0.0;
+  startLoadTest(raw, s);
+  Simulation a(damped), b(undamped), c(raw);
+  EXPECT_EQ(localDamping(undamped.test, undamped.solver.settlingDamping), 0.7) << "consolidating";
+  int samples = 0;
+  for (; samples < 1000 && undamped.test.stage == TestStage::Consolidate; ++samples) {
+    a.advance(50);
+    b.advance(50);
+    c.advance(50);
+    const std::string difference = statetest::firstDifference(damped, undamped);
+    ASSERT_EQ(difference, "") << "Settling Damping acted while consolidating (sample " << samples << ")";
+  }
+  ASSERT_EQ(undamped.test.stage, TestStage::Shear) << "consolidated within " << samples << " samples";
+  EXPECT_GT(samples, 2);
+  EXPECT_NE(statetest::firstDifference(undamped, raw), "") << "the consolidation's damping is what it ran at";
+  EXPECT_EQ(localDamping(undamped.test, undamped.solver.settlingDamping), 0.0) << "shearing";
+  a.advance(500);
+  b.advance(500);
+  EXPECT_NE(statetest::firstDifference(damped, undamped), "") << "the shear runs at Settling Damping";
+  // Outside a confined test's consolidation the solver's Settling Damping holds.
+  LoadTestState off;
+  EXPECT_EQ(localDamping(off, 0.25), 0.25);
+  off.settings.mode = TestMode::Compression;
+  off.stage = TestStage::Consolidate;
+  EXPECT_EQ(localDamping(off, 0.25), 0.25);
+  off.settings.mode = TestMode::Isotropic;
+  EXPECT_EQ(localDamping(off, 0.25), 0.7);
 }
 
 // Platen Friction acts on the platens with the Coulomb coefficient given. Reference: a

@@ -95,6 +95,7 @@ Model everyFieldModel()
   s.strainRate = 2.0;
   s.maxStrain = 0.04;
   s.servoAlpha = 0.4;
+  s.consolidationDamping = 0.45;
   s.sampleInterval = 50;
   s.settleTolerance = 0.02;
   startLoadTest(m, s);
@@ -153,6 +154,7 @@ void expectAllFieldsEqual(const Model& a, const Model& b)
   EXPECT_EQ(s.settleTolerance, t.settleTolerance);
   EXPECT_EQ(s.gripLength, t.gripLength);
   EXPECT_EQ(s.platenFriction, t.platenFriction);
+  EXPECT_EQ(s.consolidationDamping, t.consolidationDamping);
   EXPECT_EQ(a.test.initialLength, b.test.initialLength);
   EXPECT_EQ(a.test.initialVolume, b.test.initialVolume);
   EXPECT_EQ(a.test.initialSpread, b.test.initialSpread);
@@ -247,10 +249,10 @@ TEST(StateFile, ModelStructsHaveTheRecordedLayout)
   EXPECT_EQ(sizeof(Wall), 80u) << "Wall" << fix;
   EXPECT_EQ(sizeof(ContactHistory), 4 * sizeof(std::vector<double>)) << "ContactHistory" << fix;
   EXPECT_EQ(sizeof(Bonds), 19 * sizeof(std::vector<double>)) << "Bonds" << fix;
-  EXPECT_EQ(sizeof(LoadTestSettings), 72u) << "LoadTestSettings" << fix;
+  EXPECT_EQ(sizeof(LoadTestSettings), 80u) << "LoadTestSettings" << fix;
   EXPECT_EQ(sizeof(LoadTestState), sizeof(LoadTestSettings) + 96 + sizeof(std::vector<double>)) << "LoadTestState" << fix;
   EXPECT_EQ(sizeof(Random), 32u) << "Random" << fix;
-  EXPECT_EQ(sizeof(Model), 1288u) << "Model" << fix;
+  EXPECT_EQ(sizeof(Model), 1296u) << "Model" << fix;
 }
 
 TEST(StateFile, EveryFieldSurvivesBitForBit)
@@ -383,6 +385,22 @@ TEST(StateFile, PlatenFrictionIsSavedAndOlderFilesReadAsFrictionless)
   // A file written before Platen Friction existed: the platens were frictionless.
   const auto older = editImage(image, [&](hid_t f) { H5Ldelete(f, "test/settings/platen_friction", H5P_DEFAULT); });
   EXPECT_EQ(readStateFromMemory(older.data(), older.size()).test.settings.platenFriction, 0.0);
+}
+
+TEST(StateFile, ConsolidationDampingIsSavedAndOlderFilesReadItAsTheirSettlingDamping)
+{
+  Model m = dem::testing::specimen(60, 0.01, 0.001, 0.0015, 6);
+  m.solver.settlingDamping = 0.2;
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.consolidationDamping = 0.55;
+  startLoadTest(m, s);
+  const std::vector<unsigned char> image = writeStateToMemory(m);
+  EXPECT_EQ(readStateFromMemory(image.data(), image.size()).test.settings.consolidationDamping, 0.55);
+  // A file written before Consolidation Damping existed ran its whole test at Settling Damping.
+  const auto older =
+    editImage(image, [&](hid_t f) { H5Ldelete(f, "test/settings/consolidation_damping", H5P_DEFAULT); });
+  EXPECT_EQ(readStateFromMemory(older.data(), older.size()).test.settings.consolidationDamping, 0.2);
 }
 
 TEST(StateFile, TheCylinderOutlineIsSavedOlderFilesReadAsABoxAndBadAxesAreRefused)

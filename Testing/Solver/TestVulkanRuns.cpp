@@ -238,6 +238,36 @@ TEST(VulkanRuns, PlatenFrictionUnderUnconfinedCompressionGivesTheCpuBits)
   EXPECT_NE(statetest::firstDifference(lubricated, cpu), "") << "the platens' friction changes the run";
 }
 
+TEST(VulkanRuns, TriaxialConsolidatingDampedAndShearingUndampedGivesTheCpuBits)
+{
+  // Consolidation Damping (LoadTest.md): the GPU takes the damping of the stage, as the CPU
+  // does, across the switch from the consolidation (0.7) to the undamped shear.
+  ROCKDEM_REQUIRE_VULKAN_DEVICE();
+  Model m = cementedSpecimen(600, 0.021, 2);
+  m.solver.settlingDamping = 0.0;
+  LoadTestSettings s;
+  s.mode = TestMode::Triaxial;
+  s.confiningStress = 2e5;
+  s.strainRate = 25.0;
+  s.maxStrain = 0.2;
+  s.sampleInterval = 50;
+  s.consolidationDamping = 0.7;
+  startLoadTest(m, s);
+  std::int64_t consolidation = 0; // steps to the shear, on the CPU
+  {
+    Model probe = m;
+    Simulation sim(probe, SolverDevice::CPU);
+    while (probe.test.stage == TestStage::Consolidate && consolidation < 100000) {
+      sim.advance(50);
+      consolidation += 50;
+    }
+    ASSERT_EQ(probe.test.stage, TestStage::Shear);
+  }
+  Model cpu, gpu;
+  EXPECT_EQ(cpuGpuDifference(m, { consolidation - 100, 600 }, &cpu, &gpu), "") << "first difference";
+  EXPECT_EQ(cpu.test.stage, TestStage::Shear);
+}
+
 TEST(VulkanRuns, SettlingWithRollingFrictionGivesTheCpuBits)
 {
   ROCKDEM_REQUIRE_VULKAN_DEVICE();

@@ -58,7 +58,21 @@ struct LoadTestSettings {
   /// laboratory's unlubricated steel platens are about 0.2-0.5: they hold the specimen's
   /// ends against its lateral expansion (end restraint). The side walls stay frictionless.
   double platenFriction = 0.0;
+  /// Cundall local damping alpha while a Triaxial or Isotropic test consolidates (its
+  /// Consolidate stage: the servo faces bring the specimen to the confining stress),
+  /// dimensionless, [0, 1); the shear stage runs at the solver's Settling Damping. Bringing
+  /// a cemented specimen to sigma3 undamped overshoots and breaks bonds before the shear
+  /// (a quarter of them at 20 % of the UCS, Rock.md); the consolidation is a quasi-static
+  /// preparation, so it keeps 0.7 when the shear is run undamped. State files written
+  /// before Consolidation Damping existed read it as their Settling Damping (what they ran).
+  double consolidationDamping = 0.7;
 };
+
+struct LoadTestState;
+/// The Cundall local damping alpha of the next step: the test's Consolidation Damping while
+/// a Triaxial or Isotropic test is in its Consolidate stage, `settlingDamping` (the solver's
+/// Settling Damping) otherwise. Both backends take it per step (it changes only at a sample).
+double localDamping(const LoadTestState& test, double settlingDamping);
 
 /// Field-by-field equality (two stages with equal settings run the same test).
 bool operator==(const LoadTestSettings& a, const LoadTestSettings& b);

@@ -631,7 +631,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   // 4. Gather per particle in a fixed order (pairs by partner slot, then walls, then
   // bonds); Cundall damping on the unbalanced force; on a real step, the closing half
   // kick of the velocity Verlet step.
-  const double alpha = model_.solver.settlingDamping;
+  const double alpha = localDamping(model_.test, model_.solver.settlingDamping);
   const Vec3 gravity = model_.gravity;
   const double half = 0.5 * timestep_;
   const long count = static_cast<long>(n);

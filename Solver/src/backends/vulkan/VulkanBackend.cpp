@@ -512,6 +512,7 @@ void VulkanBackend::setStageParameters()
   q.platenVelocity = s.mode == TestMode::Tension ? platenSpeed : -platenSpeed;
   q.confiningStress = s.confiningStress;
   q.servoAlpha = s.servoAlpha;
+  q.alpha = localDamping(t, model_.solver.settlingDamping); // Consolidation Damping while consolidating
   // During a press test the side walls are frictionless and the platens (the walls on
   // the test axis) have the test's Platen Friction (CpuBackend::computeForces).
   q.wallFriction = testMode ? 0.0 : contactModel_.friction;
