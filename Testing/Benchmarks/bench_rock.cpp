@@ -41,9 +41,9 @@
 //     test history), which must be 0.
 //   --bond-modulus B: Bond Modulus B (Pa) instead of --modulus; --servo-alpha A; --max-steps N
 //     stops a test after N steps; --to-max-strain: the stability runs go on to Max Strain.
-//   --consolidation-damping D: a triaxial test brings the specimen to sigma3 at Settling
-//     Damping D and shears at --damping (the two stages' damping set apart; each triaxial
-//     line also prints the bonds broken when the shear started). --ucs P: the triaxial
+//   --consolidation-damping D (default 0.7): the triaxial tests' Consolidation Damping (they
+//     shear at --damping; each triaxial line also prints the bonds broken when the shear
+//     started; --tests servomap sweeps the damping of the whole test). --ucs P: the triaxial
 //     series' confining stresses are fractions of P (Pa) when --tests has no ucs.
 //   --min-peak-strain S: the stop rule (the stress fallen to 70 %, triaxial 80 %, of its peak)
 //     counts a peak only at an axial strain of S or more (default 1 % of --max-strain), so
@@ -127,7 +127,7 @@ struct Options {
   double inertialTarget = 0.0;  // > 0: the suggestion at this inertial number instead of the engine's target
   double safety = 0.3;
   double damping = 0.7;
-  double consolidationDamping = -1.0; // >= 0: Settling Damping while a triaxial test consolidates (then --damping)
+  double consolidationDamping = 0.7; // Consolidation Damping of the triaxial tests (the shear: --damping)
   double maxStrain = 0.03;
   double minPeakStrain = -1.0;  // the stop rule's smallest peak strain; < 0: 1 % of maxStrain
   double platenFriction = 0.0;  // Platen Friction of the compression and triaxial tests
@@ -767,6 +767,7 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
   s.sampleInterval = 50;
   s.platenFriction = mode == TestMode::Tension ? 0.0 : o.platenFriction;
   s.servoAlpha = o.servoAlpha;
+  s.consolidationDamping = o.consolidationDamping;
   startLoadTest(m, s);
   Simulation sim(m);
   s.strainRate = o.strainPerStep / sim.timestep();
@@ -789,10 +790,6 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     return u;
   };
-  const bool dampedConsolidation = o.consolidationDamping >= 0.0 && m.test.stage == TestStage::Consolidate;
-  if (dampedConsolidation) {
-    m.solver.settlingDamping = o.consolidationDamping;
-  }
   Simulation run(m);
   if (failed) {
     failed->surface.clear();
@@ -814,9 +811,6 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     if (strain.empty()) {
       r.brokenAtShear = countBonds(m.bonds).broken;
-      if (dampedConsolidation) {
-        m.solver.settlingDamping = o.damping;
-      }
     }
     if (failed && failed->toShear.empty()) {
       failed->toShear = displacementSinceStart(); // the first sample of the shear stage
@@ -1123,6 +1117,7 @@ ProbeResult probeRun(Model m, TestMode mode, double confining, const Options& o,
   s.maxStrain = o.maxStrain;
   s.sampleInterval = 50;
   s.servoAlpha = alpha;
+  s.consolidationDamping = damping; // the map sweeps the damping of the whole test
   s.platenFriction = o.platenFriction;
   startLoadTest(m, s);
   s.strainRate = (o.rateFactor > 0.0 ? o.rateFactor : 16.0) * suggestedStrainRate(m, s);
