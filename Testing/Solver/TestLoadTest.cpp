@@ -18,7 +18,9 @@
 #include <Eigen/Dense>
 #include <cstdio>
 #include <cmath>
+#include <initializer_list>
 #include <map>
+#include <string>
 
 using namespace dem;
 
@@ -357,46 +359,42 @@ TEST(Press, BadSettingsAreNamed)
   EXPECT_THROW(startLoadTest(m, s), InputError);
 }
 
-// Platen Friction out of [0, 1] (or NaN) is refused, naming the parameter, its value and
-// the valid range.
-TEST(Press, PlatenFrictionOutOfRangeIsNamed)
+namespace {
+
+// Each bad value of one press setting (`field`) is refused by startLoadTest, naming the
+// parameter, its value and the valid range; `good` (the edge of the range) is accepted.
+void expectOutOfRangeNamed(TestMode mode, double LoadTestSettings::*field, const std::string& name,
+                           const std::string& range, std::initializer_list<double> bad, double good)
 {
   Model m = specimen(100, 0.02, 0.001, 0.0015);
   LoadTestSettings s;
-  s.mode = TestMode::Compression;
-  for (double bad : { -0.1, 1.5, std::nan("") }) {
-    s.platenFriction = bad;
+  s.mode = mode;
+  for (double value : bad) {
+    s.*field = value;
     try {
       startLoadTest(m, s);
-      FAIL() << "Platen Friction " << bad << " accepted";
+      ADD_FAILURE() << name << " " << value << " accepted";
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("Platen Friction = "), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("is out of range: valid range is [0, 1]"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name + " = "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is out of range: valid range is " + range), std::string::npos) << e.what();
     }
   }
-  s.platenFriction = 1.0;
-  EXPECT_NO_THROW(startLoadTest(m, s));
+  s.*field = good;
+  EXPECT_NO_THROW(startLoadTest(m, s)) << name << " " << good;
 }
 
-// Consolidation Damping out of [0, 1) (or NaN) is refused, naming the parameter, its value
-// and the valid range.
+} // namespace
+
+TEST(Press, PlatenFrictionOutOfRangeIsNamed)
+{
+  expectOutOfRangeNamed(TestMode::Compression, &LoadTestSettings::platenFriction, "Platen Friction", "[0, 1]",
+                        { -0.1, 1.5, std::nan("") }, 1.0);
+}
+
 TEST(Press, ConsolidationDampingOutOfRangeIsNamed)
 {
-  Model m = specimen(100, 0.02, 0.001, 0.0015);
-  LoadTestSettings s;
-  s.mode = TestMode::Triaxial;
-  for (double bad : { -0.1, 1.0, std::nan("") }) {
-    s.consolidationDamping = bad;
-    try {
-      startLoadTest(m, s);
-      FAIL() << "Consolidation Damping " << bad << " accepted";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("Consolidation Damping = "), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("is out of range: valid range is [0, 1)"), std::string::npos) << e.what();
-    }
-  }
-  s.consolidationDamping = 0.0;
-  EXPECT_NO_THROW(startLoadTest(m, s));
+  expectOutOfRangeNamed(TestMode::Triaxial, &LoadTestSettings::consolidationDamping, "Consolidation Damping",
+                        "[0, 1)", { -0.1, 1.0, std::nan("") }, 0.0);
 }
 
 // Consolidation Damping (LoadTest.md): a Triaxial test brings the specimen to the confining
