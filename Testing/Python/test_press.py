@@ -201,6 +201,15 @@ status = rockdem.read_only(tri, "Status")
 c.check("Servo Alpha" in status, "bad Servo Alpha is named: %s" % status)
 c.check(tri.GetDataInformation().GetNumberOfPoints() == 0, "and there is no output")
 c.check(OutputPort(tri, 1).GetDataInformation().DataInformation.GetNumberOfRows() == 0, "nor a history")
+tri.ServoAlpha = 0.5
+tri.Mode = "Triaxial"
+tri.ConsolidationDamping = 1.0  # valid range [0, 1)
+tri.UpdatePipeline(DT)
+status = rockdem.read_only(tri, "Status")
+c.check("Consolidation Damping = 1 is out of range: valid range is [0, 1)" in status,
+        "bad Consolidation Damping is named with its value and range: %s" % status)
+c.check(tri.GetDataInformation().GetNumberOfPoints() == 0, "and there is no output")
+tri.ConsolidationDamping = 0.7
 
 print("elapsed %.1f s" % (time.time() - T0))
 # (f) cemented specimen, unconfined compression through the pipeline (a short run: the
