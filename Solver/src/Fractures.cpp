@@ -317,12 +317,25 @@ BondSegments bondSegments(const Model& model)
   return out;
 }
 
-/// Fill of a disc: the fraction of the bonds crossing it (their segment crosses its
-/// plane inside the disc; in 2D inside the trace) that are broken; 0 when none crosses.
-double discFill(const FractureDisc& disc, const BondSegments& seg, bool section2D)
-{
+/// The bonds crossing a disc (their segment crosses its plane inside the disc; in 2D
+/// inside the trace) and how many of them are broken.
+struct Footprint {
   std::size_t crossing = 0;
   std::size_t broken = 0;
+  /// Fill: the broken fraction of the crossing bonds; 0 when none crosses.
+  double fill() const { return crossing ? static_cast<double>(broken) / static_cast<double>(crossing) : 0.0; }
+  /// How many binomial standard deviations the broken count lies above what a damage
+  /// fraction D (0 < D < 1) predicts for as many bonds: (k - n D) / sqrt(n D (1 - D)).
+  double significanceOver(double D) const
+  {
+    const double n = static_cast<double>(crossing);
+    return n > 0.0 ? (static_cast<double>(broken) - n * D) / std::sqrt(n * D * (1.0 - D)) : 0.0;
+  }
+};
+
+Footprint discFootprint(const FractureDisc& disc, const BondSegments& seg, bool section2D)
+{
+  Footprint f;
   const Vec3& n = disc.normal;
   const Vec3& c = disc.center;
   const double R = disc.radius;
@@ -338,11 +351,11 @@ double discFill(const FractureDisc& disc, const BondSegments& seg, bool section2
     const Vec3 x = seg.a[k] + sa / (sa - sb) * (seg.b[k] - seg.a[k]);
     const bool inside = section2D ? std::abs(disc.strike.dot(x - c)) <= R : (x - c).norm() <= R;
     if (inside) {
-      ++crossing;
-      broken += seg.broken[k] ? 1 : 0;
+      ++f.crossing;
+      f.broken += seg.broken[k] ? 1 : 0;
     }
   }
-  return crossing ? static_cast<double>(broken) / static_cast<double>(crossing) : 0.0;
+  return f;
 }
 
 /// Plane of three (2D: two) cracks; false when degenerate.
@@ -911,7 +924,8 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
     std::vector<FractureDisc> discs;
     // A disc for a part that is planar and filled enough; false otherwise.
     enum class Verdict { Emitted, NonPlanar, Sparse };
-    auto tryDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
+    auto tryDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into,
+                       Footprint* footprint = nullptr) {
       const PlaneFit f = fitPlane(cracks, part, section2D);
       // Planar: flat for its size (Planarity) and thin in absolute terms (the thickness of
       // the uniform slab with its spread, sqrt(12 l1), within kMaxThickness Cluster
@@ -920,7 +934,11 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
         return Verdict::NonPlanar;
       }
       FractureDisc d = makeDisc(set, f, cracks, part, model.domain, params.discSides);
-      d.fill = discFill(d, segments, section2D);
+      const Footprint fp = discFootprint(d, segments, section2D);
+      d.fill = fp.fill();
+      if (footprint) {
+        *footprint = fp;
+      }
       if (d.fill < params.minimumFill) {
         return Verdict::Sparse;
       }
@@ -935,6 +953,29 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
     auto grownDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
       std::vector<FractureDisc> one;
       if (tryDisc(part, &one) != Verdict::Emitted || one.front().fill < grownFill) {
+        return false;
+      }
+      if (into) {
+        into->push_back(std::move(one.front()));
+      }
+      return true;
+    };
+    // A part of a band the scan found (scanBands) is a disc if its own footprint is as
+    // clearly more broken than the model as a whole as the scan asked of the band's slab:
+    // the broken bonds crossing it exceed D x the crossing bonds by Band Significance
+    // binomial standard deviations (a chance alignment in diffuse damage has about D; the
+    // scan's significance already stands for "not chance", so the band is not held to the
+    // grown planes' contrast D + (1 - D) / 2, which a 2-diameter slab of a band a few
+    // slabs thick does not reach inside dense damage).
+    auto bandDisc = [&](const std::vector<std::size_t>& part, std::vector<FractureDisc>* into) {
+      std::vector<FractureDisc> one;
+      Footprint fp;
+      if (tryDisc(part, &one, &fp) != Verdict::Emitted) {
+        return false;
+      }
+      const bool contrast = one.front().fill >= grownFill;
+      const bool significant = damage > 0.0 && damage < 1.0 && fp.significanceOver(damage) >= params.bandSignificance;
+      if (!contrast && !significant) {
         return false;
       }
       if (into) {
@@ -989,7 +1030,7 @@ FractureNetwork extractFractures(const Model& model, const FractureParameters& p
           }
         }
         const auto bands = scanBands(cracks, rest, segments.mid, distance, params.bandSignificance, minimum,
-          section2D, [&](const std::vector<std::size_t>& part) { return grownDisc(part, &found); }, // the disc, once
+          section2D, [&](const std::vector<std::size_t>& part) { return bandDisc(part, &found); }, // the disc, once
           [&](const std::vector<std::size_t>& slab) { return connectedParts(cracks, slab, distance, shareDistance); });
         c.scannedClusters += bands.empty() ? 0 : 1;
       }

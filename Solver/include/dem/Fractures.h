@@ -47,7 +47,9 @@ struct FractureParameters {
   /// leaves after the split and the growth is scanned for flat bands (slabs one Cluster
   /// Distance thick, every orientation and offset); the band whose cracks most exceed the
   /// count expected from the cluster's damage fraction becomes a candidate plane when the
-  /// excess is at least this many standard deviations; 0 = off.
+  /// excess is at least this many standard deviations (and a part of it is a disc when
+  /// its Fill has the grown planes' contrast, or the broken bonds crossing it exceed the
+  /// model's damage fraction by this many standard deviations); 0 = off.
   double bandSignificance = 8.0;
   int discSides = 24;              ///< Disc Sides: vertices of each disc polygon, >= 3
 };
@@ -167,8 +169,11 @@ Vec3 normalFromDipAzimuth(double dipDegrees, double azimuthDegrees);
 /// the unassigned cracks over the bonds of the box, the slab with the largest z = (k - n p)
 /// / sqrt(n p (1 - p)) (k cracks, n bonds in it) is a candidate when z reaches Band
 /// Significance (chance maxima over the ~10^5 slabs of a uniform spread are about 5); its
-/// connected parts become discs when they pass the test of a grown plane; repeated on the
-/// cracks still unassigned, at most 8 times, until a candidate fails. This reads the thick,
+/// connected parts become discs when they pass the tests of a cluster and are clearly more
+/// broken than the model: Fill >= D + (1 - D) / 2 as a grown plane, or, of the n bonds
+/// crossing the disc, k broken, (k - n D) / sqrt(n D (1 - D)) >= Band Significance (a
+/// wide band moderately denser than dense damage); the candidate's slab (cracks and
+/// bonds) is set aside and the scan repeats on the rest, at most 8 candidates. This reads the thick,
 /// steep band through a specimen's diffuse damage that the local growth misses. Only when
 /// no plane is found is the cluster rejected as non-planar.
 FractureNetwork extractFractures(const Model& model, const FractureParameters& params);
