@@ -166,6 +166,7 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
     s.confiningStress, s.strainRate, s.maxStrain, s.servoAlpha, static_cast<double>(s.sampleInterval),
     s.settleTolerance, s.gripLength, s.platenFriction });
   AddField(fd, "TestConfinement", { static_cast<double>(s.confinement) });
+  AddField(fd, "TestConsolidationDamping", { s.consolidationDamping });
   AddField(fd, "TestState", { static_cast<double>(t.stage), t.initialLength[0], t.initialLength[1],
     t.initialLength[2], t.initialVolume, t.peakStress, t.peakDeviator,
     static_cast<double>(t.settledChecks), static_cast<double>(t.stepsSinceSample), t.initialSpread[0],
@@ -181,7 +182,9 @@ void LoadTestToFieldData(const dem::LoadTestState& t, vtkFieldData* fd)
   fd->AddArray(history);
 }
 
-void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
+// `settlingDamping`: the model's Settling Damping, the Consolidation Damping of data saved
+// before it existed (their whole test ran at Settling Damping; as dem::readState).
+void LoadTestFromFieldData(vtkFieldData* fd, double settlingDamping, dem::LoadTestState& t)
 {
   auto value = [&](const char* name, int k, int n) { return Field(fd, name, k, n); };
   dem::LoadTestSettings& s = t.settings;
@@ -209,6 +212,9 @@ void LoadTestFromFieldData(vtkFieldData* fd, dem::LoadTestState& t)
       dem::formatValue(confinement) + " (valid: 0 Rigid Walls, 1 Membrane).");
   }
   s.confinement = static_cast<dem::Confinement>(static_cast<int>(confinement));
+  s.consolidationDamping = fd->GetAbstractArray("TestConsolidationDamping")
+    ? value("TestConsolidationDamping", 0, 1)
+    : settlingDamping;
   const double stage = value("TestState", 0, 12);
   if (!(stage >= 0 && stage <= 3))
   {
@@ -901,7 +907,7 @@ dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input)
     wall.contacts = static_cast<std::int64_t>(v[10]);
     model.walls.push_back(wall);
   }
-  LoadTestFromFieldData(fd, model.test);
+  LoadTestFromFieldData(fd, model.solver.settlingDamping, model.test);
   ContactsFromPolyData(input, model);
 
   const vtkIdType n = particles->GetNumberOfPoints();

@@ -240,6 +240,18 @@ TEST(ModelConversion, DataWithoutTheCylinderAxisReadsAsABox)
   EXPECT_EQ(rockdem::MultiBlockToModel(mb).domain.cylinderAxis, -1);
 }
 
+TEST(ModelConversion, ConsolidationDampingTravelsAndOlderDataReadItAsTheirSettlingDamping)
+{
+  dem::Model model = SamplePack();
+  model.solver.settlingDamping = 0.0;
+  model.test.settings.consolidationDamping = 0.55;
+  vtkNew<vtkMultiBlockDataSet> mb;
+  rockdem::ModelToMultiBlock(model, mb);
+  EXPECT_EQ(rockdem::MultiBlockToModel(mb).test.settings.consolidationDamping, 0.55);
+  mb->GetFieldData()->RemoveArray("TestConsolidationDamping"); // data saved before it existed
+  EXPECT_EQ(rockdem::MultiBlockToModel(mb).test.settings.consolidationDamping, 0.0);
+}
+
 TEST(ModelConversion, ParticlesBlockCarriesTheDocumentedArrays)
 {
   const dem::Model model = SamplePack();
