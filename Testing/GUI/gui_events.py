@@ -354,3 +354,39 @@ running. Written by gui_events.py.""", [
     python("g.check(g.source('Sphere1') is not None and GetActiveSource().GetXMLName() == 'DEMStateReader', "
            "'Apply after show_test_chart: a Sphere and a .rdem were applied, ParaView is still running')"),
 ])
+
+# --- 7. A calibration from the GUI's Python shell ----------------------------------------
+write("gui_calibration.xml", """
+RockDEM GUI test: a calibration run from the ParaView GUI the way Documentation/Calibration.md
+tells a user to (View > Python Shell, import rockdem), with its progress printed in the shell:
+a 300-grain specimen calibrated to E = 500 MPa and UCS = 1 MPa, then its parameter file
+rebuilt as a pipeline (rockdem.build_specimen: DEM Pack Source -> DEM Cement) and loaded in
+unconfined compression through the Filters menu and Apply, as a user continues from it.
+Written by gui_events.py.""", [
+    python("import rockdem, json; recs = []; folder = g.OUT + '/calibration'; before = len(GetSources())"),
+    python("res = rockdem.calibrate({'name': 'GUI rock', 'youngs_modulus': 5e8, 'ucs': 1e6}, "
+           "{'elements': 300, 'seed': 3, 'max_tests': 12}, "
+           "progress=lambda r: (recs.append(r), print('test %d (%s): errors %s' % (r['test'], r['stage'], r['errors']))), "
+           "output=folder)"),
+    python("g.check(res['converged'] and all(abs(e) <= 0.05 for e in res['errors'].values()), "
+           "'the calibration converged in the GUI: %d specimen tests, %.1f s, errors %s' "
+           "% (res['tests'], res['seconds'], res['errors']))"),
+    python("g.check(len(recs) == len(res['iterations']) >= 2 and len(GetSources()) == before, "
+           "'one progress record per test (%d), and the calibration left no proxy behind (%d sources)' "
+           "% (len(recs), len(GetSources())))"),
+    python("pack, cement = rockdem.build_specimen(folder + '/parameters.json'); SetActiveSource(cement); "
+           "Show(cement); Render(); doc = rockdem.load_parameters(folder + '/parameters.json')"),
+    python("g.check(all(abs(cement.GetPropertyValue(k) - v) <= 1e-12 * abs(v) for k, v in doc['cement'].items() "
+           "if k != 'RandomSeed') and g.value(cement, 'Bonds') > 0, "
+           "'build_specimen made the calibrated DEM Cement in the pipeline: Bond Modulus %.4g Pa, Tensile %.4g Pa, "
+           "%d bonds' % (cement.BondModulus, cement.TensileStrength, g.value(cement, 'Bonds')))"),
+    menu("menuFilters", "DEMLoadTest"),
+    combo("Mode", "Compression"),
+    APPLY,
+    wait(1000),
+    python("t = GetActiveSource(); g.check(t.GetXMLName() == 'DEMLoadTest' and t.Input.SMProxy == cement.SMProxy "
+           "and g.value(t, 'Bonds') == g.value(cement, 'Bonds') and g.value(t, 'SuggestedStrainRate') > 0, "
+           "'DEM Load Test applied from the Filters menu on the calibrated specimen: its %d bonds, Suggested Strain "
+           "Rate %.4g 1/s' % (g.value(t, 'Bonds'), g.value(t, 'SuggestedStrainRate')))"),
+    python("g.shot('calibrated_specimen')"),
+])
