@@ -763,4 +763,4 @@ def _release_shadows():
 # ---------------------------------------------------------------------------------------
 
 from rockdem_calibration import (  # noqa: E402,F401
-    CalibrationError, build_specimen, calibrate, load_parameters, load_rock, save_parameters, verify)
+    CalibrationError, build_specimen, calibrate, load_parameters, load_rock, save_parameters, test_strains, verify)

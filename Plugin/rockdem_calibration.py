@@ -719,6 +719,15 @@ def _tension_strain(target):
     return min(0.01, max(0.002, 4.0 * ratio))
 
 
+def test_strains(target):
+    """The Max Strains the calibration runs its tests to for a target (a dict of
+    TARGET_KEYS, or a parameter file's 'target'): {'elastic': ..., 'ucs': ..., 'tension':
+    ...} (-). A run on a calibrated specimen that uses them (and the file's 'test'
+    strain_per_step) measures what the calibration measured (examples/main_job.py
+    --parameters)."""
+    return {"elastic": _elastic_strain(target), "ucs": _ucs_strain(target), "tension": _tension_strain(target)}
+
+
 def verify(parameters, seeds=(2, 3, 4), progress=None):
     """The calibrated parameters on fresh specimens: for each Random Seed, a new pack of the
     calibration's recipe, cemented with the calibrated parameters, tested as the

@@ -1,6 +1,13 @@
 """RockDEM main job (pvbatch): the complete workflow on the default specimen.
 
     scripts/run_with_xvfb.sh pvbatch examples/main_job.py [--elements N] [--output DIR]
+    scripts/run_with_xvfb.sh pvbatch examples/main_job.py --parameters FILE [--output DIR]
+
+--parameters runs the same workflow on a calibrated rock: the pack and the cement come from
+a calibration's parameter file (rockdem.calibrate, Documentation/Calibration.md; e.g.
+Data/calibrated/lac_du_bonnet_granite.json), the tests run at the platen strain per step
+and to the Max Strains the calibration used, and the job prints its measurements beside
+the calibration's target.
 
 pack (placed loose, then Compact Elements: radius expansion with relaxation to the Target
 Porosity) -> cement over an interaction range (DEM Cement, Bond Range) -> relax (Mode Off,
@@ -80,16 +87,31 @@ def save_state(path, view, chart, t_end):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--elements", type=int, default=ELEMENTS,
-                        help="Initial Elements of the default specimen (count); the box is "
-                             "scaled with the count so the grains stay 1-2 mm after compaction")
+    parser.add_argument("--elements", type=int, default=None,
+                        help="Initial Elements of the default specimen (count, default %d); the box is "
+                             "scaled with the count so the grains stay 1-2 mm after compaction" % ELEMENTS)
+    parser.add_argument("--parameters", default=None,
+                        help="a calibration's parameter file (JSON, rockdem.calibrate): the specimen "
+                             "(pack and cement) and the test rate come from it")
     parser.add_argument("--output", default=os.path.join(SOURCE_DIR, "results"),
                         help="folder for the picture and the summary")
     args = parser.parse_args()
+    if args.parameters and args.elements is not None:
+        parser.error("--elements = %d: not with --parameters (the specimen is the parameter file's)" % args.elements)
     os.makedirs(args.output, exist_ok=True)
 
     LoadPlugin(plugin_path(), remote=False, ns=globals())
     import rockdem
+    calibrated = None
+    if args.parameters:
+        calibrated = rockdem.load_parameters(args.parameters)
+        args.elements = int(calibrated["pack"]["InitialElements"])
+        target = calibrated["target"]
+        print("calibrated rock: %s (%s; converged: %s%s)" % (
+            target.get("name", "?"), args.parameters, calibrated["converged"],
+            "; unreachable: " + ", ".join(calibrated["unreachable"]) if calibrated["unreachable"] else ""), flush=True)
+    elif args.elements is None:
+        args.elements = ELEMENTS
 
     # Default laboratory specimen: a W x W x 2W box (W = 50 mm for 10,000 grains, scaled
     # by (N / 10000)^(1/3): 39.7 mm for the default 5,000). The grains are placed loose
@@ -107,10 +129,14 @@ def main():
         clock[0] = now
 
     # Rock-like stiffness (E 1e10 Pa, bond strength / modulus 1e-4); see Documentation/Rock.md.
-    pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
-                         InitialElements=args.elements, MinimumSize=0.00078, MaximumSize=0.00156,
-                         TargetPorosity=TARGET_POROSITY, RandomSeed=1,
-                         Density=2650.0, YoungsModulus=MODULUS, PoissonsRatio=0.25)
+    if calibrated:
+        pack = DEMPackSource(**calibrated["pack"])
+        size = [pack.XDimension, pack.YDimension, pack.ZDimension]
+    else:
+        pack = DEMPackSource(XDimension=size[0], YDimension=size[1], ZDimension=size[2],
+                             InitialElements=args.elements, MinimumSize=0.00078, MaximumSize=0.00156,
+                             TargetPorosity=TARGET_POROSITY, RandomSeed=1,
+                             Density=2650.0, YoungsModulus=MODULUS, PoissonsRatio=0.25)
     rows = []
 
     def record(stage):
@@ -158,21 +184,32 @@ def main():
     print("Current Porosity: %.4f with %d elements; picture: %s; summary: %s"
           % (final[2], final[1], picture, summary), flush=True)
     lap("pack picture")
-    test_workflow(args, pack, rockdem, lap, timings, view)
+    test_workflow(args, pack, rockdem, lap, timings, view, calibrated)
 
 
-def test_workflow(args, pack, rockdem, lap, timings, view):
-    """Cement, relax, compress (and pull a twin); write the history, chart, pictures."""
+def test_workflow(args, pack, rockdem, lap, timings, view, calibrated=None):
+    """Cement, relax, compress (and pull a twin); write the history, chart, pictures.
+    calibrated: a loaded parameter file (rockdem.load_parameters): its cement, its rate and
+    the Max Strains of its target instead of the built-in rock's."""
     safety = 0.3
+    strain_per_step, tension_strain_per_step = STRAIN_PER_STEP, TENSION_STRAIN_PER_STEP
+    max_strain, tension_max_strain = MAX_STRAIN, TENSION_MAX_STRAIN
     porosity = rockdem.read_only(pack, "CurrentPorosity")
     # 1. cement: parallel bonds between every pair within the Bond Range (Cement.md).
-    cement = DEMCement(Input=pack, BondModulus=MODULUS, TensileStrength=TENSILE, Cohesion=COHESION,
-                       BondRange=BOND_RANGE, MomentContribution=MOMENT_CONTRIBUTION, StrengthScatter=0.2)
+    if calibrated:
+        cement = DEMCement(Input=pack, **calibrated["cement"])
+        safety = calibrated["test"]["timestep_safety"]
+        strain_per_step = tension_strain_per_step = calibrated["test"]["strain_per_step"]
+        strains = rockdem.test_strains(calibrated["target"])
+        max_strain, tension_max_strain = strains["ucs"], strains["tension"]
+    else:
+        cement = DEMCement(Input=pack, BondModulus=MODULUS, TensileStrength=TENSILE, Cohesion=COHESION,
+                           BondRange=BOND_RANGE, MomentContribution=MOMENT_CONTRIBUTION, StrengthScatter=0.2)
     cement.UpdatePipeline()
     bonds = rockdem.read_only(cement, "Bonds")
     coordination = rockdem.read_only(cement, "BondedCoordination")
     print("cemented:     %s" % rockdem.read_only(cement, "LastMessage"), flush=True)
-    print("Bonded Coordination: %.2f (%d bonds, Bond Range %g)" % (coordination, bonds, BOND_RANGE), flush=True)
+    print("Bonded Coordination: %.2f (%d bonds, Bond Range %g)" % (coordination, bonds, cement.BondRange), flush=True)
     # 2. relax: walls at the box, no gravity: the stress Compact Elements locked in is
     # released before the tests (Press.md), and the timestep of the cemented model is known.
     # Every stepping stage keeps its end in a checkpoint (.rdem): main_job.pvsm reopens the
@@ -185,7 +222,7 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
         rockdem.read_only(relax, "BrokenBonds"), bonds, timestep), flush=True)
     lap("cement + relax")
     # 3. unconfined compression along Z at STRAIN_PER_STEP per timestep.
-    rate = STRAIN_PER_STEP / timestep
+    rate = strain_per_step / timestep
     frames = 30 if args.elements >= 4000 else 10
     history_file = os.path.join(args.output, "history.csv")
 
@@ -195,17 +232,17 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
                  rockdem.read_only(lt, "AxialStress"), rockdem.read_only(lt, "PeakStress"),
                  rockdem.read_only(lt, "BrokenBonds")), flush=True)
 
-    duration = 1.02 * MAX_STRAIN / rate
-    result = rockdem.ucs_test(relax, StrainRate=rate, MaxStrain=MAX_STRAIN, TimestepSafety=safety,
+    duration = 1.02 * max_strain / rate
+    result = rockdem.ucs_test(relax, StrainRate=rate, MaxStrain=max_strain, TimestepSafety=safety,
                               FrameInterval=duration / frames, NumberOfFrames=frames,
                               SampleInterval=50, HistoryFile=history_file, progress=progress,
                               CheckpointFile=checkpoint(args, "specimen"))
     press = result["proxy"]
     lap("compression")
     # 4. direct tension of a twin: the same cemented, relaxed specimen pulled along Z.
-    tension_rate = TENSION_STRAIN_PER_STEP / timestep
-    tduration = 1.02 * TENSION_MAX_STRAIN / tension_rate
-    tension = rockdem.tension_test(relax, StrainRate=tension_rate, MaxStrain=TENSION_MAX_STRAIN, TimestepSafety=safety,
+    tension_rate = tension_strain_per_step / timestep
+    tduration = 1.02 * tension_max_strain / tension_rate
+    tension = rockdem.tension_test(relax, StrainRate=tension_rate, MaxStrain=tension_max_strain, TimestepSafety=safety,
                                    FrameInterval=tduration / 20, NumberOfFrames=20, SampleInterval=20,
                                    progress=progress, stop_below=0.5,
                                    CheckpointFile=checkpoint(args, "tension"))
@@ -224,8 +261,18 @@ def test_workflow(args, pack, rockdem, lap, timings, view):
     print("UCS (Peak Stress): %.4g Pa; Young's modulus: %.4g Pa; Poisson's ratio: %.3f; "
           "broken bonds: %d of %d (%d tension, %d shear); strain rate %.4g 1/s (%g per step)"
           % (ucs, e_mod, nu, broken, bonds, rockdem.read_only(press, "BrokenInTension"),
-             rockdem.read_only(press, "BrokenInShear"), rate, STRAIN_PER_STEP), flush=True)
+             rockdem.read_only(press, "BrokenInShear"), rate, strain_per_step), flush=True)
     print("Direct tensile strength (twin): %.4g Pa; UCS / tensile strength: %.2f" % (sigma_t, ratio), flush=True)
+    if calibrated:
+        target = calibrated["target"]
+        here = {"youngs_modulus": e_mod, "ucs": ucs}
+        if target.get("tensile_test", "direct") == "direct":
+            here["tensile_strength"] = sigma_t
+        for key, value in here.items():
+            if key in target:
+                print("against the calibration's target: %s %.4g here, %.4g in the target (%+.1f %%), %.4g when "
+                      "calibrated" % (key, value, target[key], 100.0 * (value / target[key] - 1.0),
+                                      calibrated["measured"].get(key, float("nan"))), flush=True)
 
     # Stress-strain chart (ParaView's DEM Test chart).
     chart = rockdem.show_test_chart(press)

@@ -10,6 +10,8 @@ the number of specimen tests bounded (<= 12); one progress record per test; the 
 the parameter file carries the Bond Range and Moment Contribution (the recipe's here:
 no friction angle, no tensile strength in the target) and rebuilds the calibrated
 specimen (build_specimen: the same bonded coordination, the same seed).
+
+    pvpython test_calibration.py [OUTPUT_FOLDER]
 """
 import os
 import sys
@@ -29,7 +31,10 @@ t0 = time.time()
 TARGET = {"name": "CI rock", "youngs_modulus": 5.0e8, "ucs": 1.0e6}
 RECIPE = {"elements": 300, "seed": 3, "max_tests": 12}
 records = []
-out = tempfile.mkdtemp(prefix="rockdem_calibration_")
+# argv[1]: the folder to write to (ctest's, where Python.MainJobOnCalibratedRock reads
+# parameters.json); a temporary one otherwise.
+out = sys.argv[1] if len(sys.argv) > 1 else tempfile.mkdtemp(prefix="rockdem_calibration_")
+os.makedirs(out, exist_ok=True)
 res = rockdem.calibrate(TARGET, RECIPE, progress=records.append, output=out)
 for rec in records:
     print("test %d %s: %s -> %s" % (rec["test"], rec["stage"], {k: "%.4g" % v for k, v in rec["parameters"].items()},
