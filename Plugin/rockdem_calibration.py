@@ -958,10 +958,14 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                     p["TensileStrength"] *= st_t / m["tensile_strength"]
                     done = False
                 # UCS / sigma_t is solved on the tests where UCS (and E) are matched only:
-                # the ratio depends strongly on the bond strengths relative to the modulus
-                # (measured, granite at beta 0: 5.4 at Tensile / Bond Modulus 1e-3, 65 at
-                # 6e-5), which the scale and E secants are still moving on the other tests,
-                # so a ratio point (and a lever found spent) is only meaningful there.
+                # at fast loading the ratio depends strongly on the bond strengths relative
+                # to the modulus (measured at 1e-6 platen strain per step, granite at beta
+                # 0: 5.4 at Tensile / Bond Modulus 1e-3, 65 at 6e-5: the fewer steps to the
+                # peak, the more dynamic it is), which the scale and E secants are still
+                # moving on the other tests, so a ratio point (and a lever found spent) is
+                # only meaningful there. (At 1e-7 per step it hardly does: 14.16 against
+                # 13.79 at 3 x the strengths, 2,000 grains; Calibration.md, "What sets UCS /
+                # sigma_t".)
                 matched = within(errs, [k for k in ("ucs", "youngs_modulus") if k in errs])
                 if q_chain and "tensile_strength" not in unreachable and matched and \
                         abs(errs["tensile_strength"]) > tol["tensile_strength"]:
