@@ -1202,7 +1202,7 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
             stats[kind] = {k: mean_sd([r[k] for r in recs]) for k in (
                 "ucs", "E", "nu", "tension", "ratio", "across", "porosity", "coordination", "bonds", "particles",
                 "broken_peak", "near_platens", "band", "band_control", "disc_share", "discs", "total", "wall",
-                "particle_steps", "ucs_steps", "peak_strain", "skin_broken", "skin_all", "timestep", "rate_factor")}
+                "particle_steps", "ucs_steps", "peak_strain", "skin_broken", "skin_all", "timestep", "rate_factor", "rate")}
             stats[kind]["seeds"] = [s for s in c["seeds"] if (kind, s) in done]
     ref = stats.get("box")
 
@@ -1232,6 +1232,7 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
         summary.append([
             label, ",".join("%d" % s for s in st["seeds"]), "%d" % st["particles"][0], "%.1f" % st["across"][0],
             "%.3f / %.2f" % (st["porosity"][0], st["coordination"][0]),
+            "%.3g s, %.3g 1/s (%.1f x)" % (st["timestep"][0], st["rate"][0], st["rate_factor"][0]),
             ms(kind, "ucs", 1e6, "%.2f") + diff(kind, "ucs"), ms(kind, "E", 1e9, "%.2f") + diff(kind, "E"),
             ms(kind, "nu", 1.0, "%.3f"), ms(kind, "tension", 1e6, "%.3f") + diff(kind, "tension"),
             ms(kind, "ratio", 1.0, "%.2f"), ms(kind, "broken_peak", 1.0, "%.1f %%"),
@@ -1239,7 +1240,8 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
             ms(kind, "band", 1.0, "%.3f") + " (%.3f)" % st["band_control"][0],
             "%.1f / %.1f %%" % (st["discs"][0], st["disc_share"][0]),
             "%.0f" % st["ucs_steps"][0], "%.3g" % st["particle_steps"][0], "%.1f" % st["total"][0]])
-    head = ["specimen", "seeds", "particles", "across", "porosity / bonded coordination", "UCS (MPa)", "E (GPa)", "nu",
+    head = ["specimen", "seeds", "particles", "across", "porosity / bonded coordination",
+            "timestep, strain rate (x Suggested Strain Rate)", "UCS (MPa)", "E (GPa)", "nu",
             "sigma_t (MPa)", "UCS / sigma_t", "bonds broken at the peak", "broken near the platens",
             "band excess after the peak (control)", "DFN: discs / broken bonds in discs", "steps to 70 % of the peak",
             "particle-steps (compaction, UCS, tension)", "seconds (whole run)"]
@@ -1284,6 +1286,8 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
         ax.axhline(0.0, color="0.6", linewidth=0.8)
         from matplotlib.ticker import NullFormatter
         ax.xaxis.set_minor_formatter(NullFormatter())
+        seconds = [r["total"] for r in done.values()]
+        ax.set_xlim(10 ** math.floor(math.log10(min(seconds))), 10 ** math.ceil(math.log10(max(seconds))))
         ax.set_xlabel("seconds per specimen, whole run (one thread)")
         ax.set_ylabel("UCS against the 3D box's mean (%)")
         ax.set_title("Cost against the difference in UCS\n(dots: seeds; squares: means)", fontsize=9)
