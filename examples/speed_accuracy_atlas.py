@@ -1061,9 +1061,7 @@ DIMS_PATTERNS = dict(
     skin_broken=r"outer grain layer .*?: (\S+) % of the broken bonds",
     skin_all=r"outer grain layer .*?: \S+ % of the broken bonds, (\S+) % of all bonds",
 )
-BAND = re.compile(r"after peak\s+(\d+) cracks: excess (\S+) \(band holds .*?; plane (\S+) deg from the loading axis\) "
-                  r"\| control excess (\S+)")
-
+DIMS_BAND_LINE = re.compile(r"^dims-band: excess (\S+) control (\S+) plane (\S+) deg cracks (\d+)", re.M)
 
 def dims_counts(box):
     """{kind: particles} giving the 2D section and the slab the nominal width of a 3D box of `box` grains."""
@@ -1117,7 +1115,7 @@ def dims_runs(bench, cfg, work, new_runs, only=None):
         args = dims_args(c, kind, seed, counts) + ["--dump", dump]
         path = os.path.join(work, name + ".txt")
         have = False
-        if cfg is FULL and os.path.exists(path) and os.path.exists(os.path.join(dump, "ucs_failed.csv")):
+        if cfg is FULL and os.path.exists(path):
             with open(path) as f:
                 have = f.readline().rstrip("\n") == "# command: " + " ".join(args)
         if not have and (not new_runs or (only and "%s:%d" % (kind, seed) not in only)):
@@ -1131,9 +1129,24 @@ def dims_runs(bench, cfg, work, new_runs, only=None):
         row = r[0]
         row["wall"] = float(re.search(r"(\S+) s wall for the whole command", note).group(1))
         row["load"] = float(re.search(r"load average (\S+) ", note).group(1))
-        row["band"], row["band_control"], row["band_plane"], row["band_cracks"] = dims_band(
-            os.path.join(dump, "ucs_failed.csv"), c["directions"])
+        # The band statistic: computed from the dump once and kept as a "dims-band:" line at the end of the
+        # run's file (the dumps are not committed), read from there afterwards.
+        with open(path) as f:
+            kept = DIMS_BAND_LINE.search(f.read())
         row["dump"] = os.path.join(dump, "ucs_failed.csv")
+        if kept:
+            row["band"], row["band_control"], row["band_plane"] = (float(v) for v in kept.groups()[:3])
+            row["band_cracks"] = int(kept.group(4))
+        elif os.path.exists(row["dump"]):
+            row["band"], row["band_control"], row["band_plane"], row["band_cracks"] = dims_band(
+                row["dump"], c["directions"])
+            with open(path, "a") as f:
+                f.write("dims-band: excess %.6g control %.6g plane %.4g deg cracks %d (the cracks after the peak of "
+                        "%s, %d directions)\n" % (row["band"], row["band_control"], row["band_plane"],
+                                                   row["band_cracks"], row["dump"], c["directions"]))
+        else:
+            row["band"] = row["band_control"] = row["band_plane"] = math.nan
+            row["band_cracks"] = 0
         row["args"] = args
         done[(kind, seed)] = row
     return done, missing, counts, width
@@ -1266,7 +1279,8 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
     # fracture pattern of seed 1 of each kind.
     import matplotlib.gridspec as gridspec
     first_seed = c["seeds"][0]
-    pics = [(k, done[(k, first_seed)]) for k, _ in DIMS_KINDS if (k, first_seed) in done]
+    pics = [(k, done[(k, first_seed)]) for k, _ in DIMS_KINDS
+            if (k, first_seed) in done and os.path.exists(done[(k, first_seed)]["dump"])]
     fig = plt.figure(figsize=(4.2 + 3.0 * len(pics), 6.4))
     grid = gridspec.GridSpec(1, 1 + len(pics), width_ratios=[1.5] + [1.0] * len(pics), figure=fig)
     ax = fig.add_subplot(grid[0, 0])
