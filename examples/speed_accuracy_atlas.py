@@ -317,12 +317,11 @@ def threads_section(bench, cfg, work, out):
                  [[label(r), r["ucs_text"], "%d" % r["steps"], "%.1f" % r["seconds"]] for r in rows])
     if on_gpu:
         device_note = ("The GPU row ran on the Vulkan backend%s: UCS and step count against 1 CPU thread bit for bit: "
-                       "**%s**; its time against 1 CPU thread: %.2f x.%s" % (
+                       "**%s**; its time against 1 CPU thread: %.2f x." % (
                            " on lavapipe, Mesa's Vulkan driver that runs the compute shaders on the same two CPU cores "
                            "(a CPU emulation of a GPU: its time is not a GPU's time)" if lavapipe else "",
                            "yes" if gpu_same else "NO",
-                           gpu["seconds"] / cpu1["seconds"] if cpu1["seconds"] > 0 else math.nan,
-                           "" if not lavapipe else ""))
+                           gpu["seconds"] / cpu1["seconds"] if cpu1["seconds"] > 0 else math.nan))
     else:
         device_note = ("The GPU request fell back to the CPU (%s): no GPU time was measured; the row only shows that "
                        "the fallback gives the CPU's answer (bit for bit: %s)." % (gpu.get("path", "?"),
@@ -1063,14 +1062,15 @@ DIMS_PATTERNS = dict(
 )
 DIMS_BAND_LINE = re.compile(r"^dims-band: excess (\S+) control (\S+) plane (\S+) deg cracks (\d+)", re.M)
 
-def dims_counts(box):
-    """{kind: particles} giving the 2D section and the slab the nominal width of a 3D box of `box` grains."""
+def dims_counts(box, depth):
+    """The nominal width (m) of a 3D box of `box` grains, and {kind: particles} giving the 2D section and the
+    slab (`depth` nominal mean diameters thick) that width (and twice it as height), by the bench's sizing."""
     a, b = DIMS_RMIN, DIMS_RMAX
     v3 = 4.0 / 3.0 * math.pi * (a + b) * (a * a + b * b) / 4.0  # mean sphere volume
     a2 = math.pi * (a * a + a * b + b * b) / 3.0                 # mean disc area (x the slab: its volume)
     width = (box * v3 / (1.0 - 0.36) / DIMS_ASPECT) ** (1.0 / 3.0)
     return width, {"box": box, "2d": int(round(width * width * DIMS_ASPECT * (1.0 - 0.16) / a2)),
-                   "slab": None}
+                   "slab": int(round(width * width * DIMS_ASPECT * depth * (a + b) * (1.0 - 0.36) / v3))}
 
 
 def dims_args(c, kind, seed, counts):
@@ -1104,10 +1104,7 @@ def dims_runs(bench, cfg, work, new_runs, only=None):
     """Runs (or reuses) the section's bench runs in their order (only those named in `only`, KIND:SEED, when
     given: to split the runs over processes); {(kind, seed): figures}, the missing runs, counts, width."""
     c = cfg["dims"]
-    width, counts = dims_counts(c["box"])
-    a, b = DIMS_RMIN, DIMS_RMAX
-    v3 = 4.0 / 3.0 * math.pi * (a + b) * (a * a + b * b) / 4.0
-    counts["slab"] = int(round(width * width * DIMS_ASPECT * c["depth"] * (a + b) * (1.0 - 0.36) / v3))
+    width, counts = dims_counts(c["box"], c["depth"])
     done, missing = {}, []
     for kind, seed in c["order"]:
         name = "dims_%s_s%d" % (kind, seed)
