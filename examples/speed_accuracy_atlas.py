@@ -1056,6 +1056,7 @@ DIMS_PATTERNS = dict(
     size_y=r"^specimen: .*particles, \S+ x (\S+) x",
     near_platens=r"^UCS .*broken within 2 diameters of a platen: (\S+) %",
     depth_across=r"along Y = (\S+) mean diameters",
+    broken_70=r"^UCS .*; broken \d+ \((\S+) % of bonds\); 70 % of peak",
     tension_steps=r"^direct tension .*\((\d+) steps, \S+ s\)",
     skin_broken=r"outer grain layer .*?: (\S+) % of the broken bonds",
     skin_all=r"outer grain layer .*?: \S+ % of the broken bonds, (\S+) % of all bonds",
@@ -1261,7 +1262,7 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
                     "%.1f" % r["depth_across"] if kind == "slab" else "-",
                     "%.3f" % r["porosity"], "%d (%.2f)" % (r["bonds"], r["coordination"]), "%.3f" % (r["ucs"] / 1e6),
                     "%.5f" % r["peak_strain"], "%.2f" % (r["E"] / 1e9), "%.3f" % r["nu"],
-                    "%.3f" % (r["tension"] / 1e6), "%.2f" % r["ratio"], "%.1f %%" % r["broken_peak"],
+                    "%.3f" % (r["tension"] / 1e6), "%.2f" % r["ratio"], "%.1f / %.1f %%" % (r["broken_peak"], r["broken_70"]),
                     "%.1f %%" % r["near_platens"], "%.3f (%.3f), %.0f deg" % (r["band"], r["band_control"],
                                                                            r["band_plane"]),
                     "%d / %.1f %%" % (r["discs"], r["disc_share"]), "%.1f / %.1f %%" % (r["skin_broken"], r["skin_all"]),
@@ -1269,7 +1270,7 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
                     "%.1f" % r["total"], "%.2f" % r["load"]])
     per_head = ["specimen", "seed", "particles", "across", "depth (mean diameters)", "porosity",
                 "bonds (coordination)", "UCS (MPa)", "strain at peak", "E (GPa)", "nu", "sigma_t (MPa)",
-                "UCS / sigma_t", "broken at the peak", "near the platens", "band excess after the peak (control), "
+                "UCS / sigma_t", "bonds broken at the peak / at 70 % of it", "broken near the platens", "band excess after the peak (control), "
                 "plane from the axis", "DFN discs / share", "outer layer: share of broken / of all bonds",
                 "steps UCS / tension", "particle-steps", "seconds", "load average before"]
     # The chart: cost against the difference in UCS from the box's mean (each seed, and the means), and the
