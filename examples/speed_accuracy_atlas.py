@@ -1044,10 +1044,13 @@ FULL["dims"] = {"box": 8000, "depth": 4, "seeds": [1, 2, 3], "strain_per_step": 
                 "min_peak_strain": 2e-5,
                 # the order: seed 1 of every kind first, then the cheap kinds' other seeds, then the boxes'
                 "order": [("2d", 1), ("slab", 1), ("box", 1), ("2d", 2), ("2d", 3), ("slab", 2), ("slab", 3),
-                          ("box", 2), ("box", 3)], "directions": 2000}
+                          ("box", 2), ("box", 3), ("thick", 1), ("thick", 2), ("thick", 3)], "directions": 2000,
+                # a slab twice as thick (run after the others): where a slab approaches the box
+                "thick_depth": 8}
 QUICK["dims"] = {"box": 300, "depth": 3, "seeds": [1], "strain_per_step": 4e-7, "max_strain": 0.005,
-                 "min_peak_strain": 2e-5, "order": [("2d", 1), ("slab", 1), ("box", 1)], "directions": 100}
-DIMS_KINDS = [("2d", "2D section"), ("slab", "3D slab"), ("box", "3D box")]
+                 "min_peak_strain": 2e-5, "order": [("2d", 1), ("slab", 1), ("box", 1)], "directions": 100,
+                 "thick_depth": 6}
+DIMS_KINDS = [("2d", "2D section"), ("slab", "3D slab"), ("thick", "3D slab, thicker"), ("box", "3D box")]
 DIMS_RMIN, DIMS_RMAX, DIMS_SLAB, DIMS_ASPECT = 0.001, 0.002, 0.002, 2.0  # the bench's defaults
 DIMS_PATTERNS = dict(
     RES_PATTERNS,
@@ -1063,7 +1066,7 @@ DIMS_PATTERNS = dict(
 )
 DIMS_BAND_LINE = re.compile(r"^dims-band: excess (\S+) control (\S+) plane (\S+) deg cracks (\d+)", re.M)
 
-def dims_counts(box, depth):
+def dims_counts(box, depth, thick_depth):
     """The nominal width (m) of a 3D box of `box` grains, and {kind: particles} giving the 2D section and the
     slab (`depth` nominal mean diameters thick) that width (and twice it as height), by the bench's sizing."""
     a, b = DIMS_RMIN, DIMS_RMAX
@@ -1071,12 +1074,14 @@ def dims_counts(box, depth):
     a2 = math.pi * (a * a + a * b + b * b) / 3.0                 # mean disc area (x the slab: its volume)
     width = (box * v3 / (1.0 - 0.36) / DIMS_ASPECT) ** (1.0 / 3.0)
     return width, {"box": box, "2d": int(round(width * width * DIMS_ASPECT * (1.0 - 0.16) / a2)),
-                   "slab": int(round(width * width * DIMS_ASPECT * depth * (a + b) * (1.0 - 0.36) / v3))}
+                   "slab": int(round(width * width * DIMS_ASPECT * depth * (a + b) * (1.0 - 0.36) / v3)),
+                   "thick": int(round(width * width * DIMS_ASPECT * thick_depth * (a + b) * (1.0 - 0.36) / v3))}
 
 
 def dims_args(c, kind, seed, counts):
     n = counts[kind]
-    extra = {"2d": ["--dimension", "2"], "slab": ["--depth", "%g" % c["depth"]], "box": []}[kind]
+    extra = {"2d": ["--dimension", "2"], "slab": ["--depth", "%g" % c["depth"]],
+             "thick": ["--depth", "%g" % c["thick_depth"]], "box": []}[kind]
     return (["--particles", str(n)] + extra + ["--seed", str(seed), "--threads", "1", "--tests", "ucs,tension",
                                                "--damping", "0", "--strain-per-step", "%g" % c["strain_per_step"]]
             + ROCK[:-2] + ["--max-strain", "%g" % c["max_strain"], "--min-peak-strain", "%g" % c["min_peak_strain"]])
@@ -1105,7 +1110,7 @@ def dims_runs(bench, cfg, work, new_runs, only=None):
     """Runs (or reuses) the section's bench runs in their order (only those named in `only`, KIND:SEED, when
     given: to split the runs over processes); {(kind, seed): figures}, the missing runs, counts, width."""
     c = cfg["dims"]
-    width, counts = dims_counts(c["box"], c["depth"])
+    width, counts = dims_counts(c["box"], c["depth"], c["thick_depth"])
     done, missing = {}, []
     for kind, seed in c["order"]:
         name = "dims_%s_s%d" % (kind, seed)
@@ -1200,14 +1205,15 @@ def dims_picture(ax, dump, kind, title):
 def dims_section(bench, cfg, work, out, new_runs=True, only=None):
     c = cfg["dims"]
     done, missing, counts, width = dims_runs(bench, cfg, work, new_runs, only)
-    names = dict(DIMS_KINDS)
+    names = dict(DIMS_KINDS, slab="3D slab, %g diameters" % c["depth"], thick="3D slab, %g diameters" % c["thick_depth"])
+    kinds = [(k, names[k]) for k, _ in DIMS_KINDS]
     for r in done.values():
         steps = r["compact_steps"] + r["ucs_steps"] + (r["tension_steps"] if math.isfinite(r["tension_steps"]) else 0)
         r["particle_steps"] = r["particles"] * steps
         r["ratio"] = r["ucs"] / r["tension"] if r["tension"] > 0 else math.nan
         r["broken_peak_share"] = r["broken_peak"]
     stats = {}
-    for kind, _ in DIMS_KINDS:
+    for kind, _ in kinds:
         recs = [done[(kind, s)] for s in c["seeds"] if (kind, s) in done]
         if recs:
             stats[kind] = {k: mean_sd([r[k] for r in recs]) for k in (
@@ -1236,7 +1242,7 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
             return "-"
         return (fmt % (m / scale)) + ((" +- " + fmt % (sd / scale)) if n > 1 and math.isfinite(sd) else "")
     summary = []
-    for kind, label in DIMS_KINDS:
+    for kind, label in kinds:
         if kind not in stats:
             continue
         st = stats[kind]
@@ -1257,9 +1263,9 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
             "band excess after the peak (control)", "DFN: discs / broken bonds in discs", "steps to 70 % of the peak",
             "particle-steps (compaction, UCS, tension)", "seconds (whole run)"]
     per = []
-    for (kind, seed), r in sorted(done.items(), key=lambda kv: ([k for k, _ in DIMS_KINDS].index(kv[0][0]), kv[0][1])):
+    for (kind, seed), r in sorted(done.items(), key=lambda kv: ([k for k, _ in kinds].index(kv[0][0]), kv[0][1])):
         per.append([names[kind], "%d" % seed, "%d" % r["particles"], "%.1f" % r["across"],
-                    "%.1f" % r["depth_across"] if kind == "slab" else "-",
+                    "%.1f" % r["depth_across"] if kind in ("slab", "thick") else "-",
                     "%.3f" % r["porosity"], "%d (%.2f)" % (r["bonds"], r["coordination"]), "%.3f" % (r["ucs"] / 1e6),
                     "%.5f" % r["peak_strain"], "%.2f" % (r["E"] / 1e9), "%.3f" % r["nu"],
                     "%.3f" % (r["tension"] / 1e6), "%.2f" % r["ratio"], "%.1f / %.1f %%" % (r["broken_peak"], r["broken_70"]),
@@ -1277,14 +1283,14 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
     # fracture pattern of seed 1 of each kind.
     import matplotlib.gridspec as gridspec
     first_seed = c["seeds"][0]
-    pics = [(k, done[(k, first_seed)]) for k, _ in DIMS_KINDS
+    pics = [(k, done[(k, first_seed)]) for k in ("2d", "slab", "box")
             if (k, first_seed) in done and os.path.exists(done[(k, first_seed)]["dump"])]
     fig = plt.figure(figsize=(4.2 + 3.0 * len(pics), 6.4))
     grid = gridspec.GridSpec(1, 1 + len(pics), width_ratios=[1.5] + [1.0] * len(pics), figure=fig)
     ax = fig.add_subplot(grid[0, 0])
-    colours = {"2d": "tab:blue", "slab": "tab:orange", "box": "tab:green"}
+    colours = {"2d": "tab:blue", "slab": "tab:orange", "thick": "tab:red", "box": "tab:green"}
     if ref:
-        for kind, label in DIMS_KINDS:
+        for kind, label in kinds:
             recs = [done[(kind, s)] for s in c["seeds"] if (kind, s) in done]
             if not recs:
                 continue
@@ -1312,10 +1318,11 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
         dims_picture(a, r["dump"], kind, "%s, seed %d, at 70 %% of the peak\n%s" % (
             names[kind], first_seed, "all discs" if kind == "2d" else "mid-plane XZ, +- one mean diameter"))
     image = save_chart(fig, out, "speed_accuracy_dims.png")
-    example = {k: " ".join(dims_args(c, k, first_seed, counts)) for k, _ in DIMS_KINDS}
+    example = {k: " ".join(dims_args(c, k, first_seed, counts)) for k, _ in kinds}
     loads = [r["load"] for r in done.values()]
-    text = ("Commands (seed S; the same rock, options and strain per step for all three, `--dump DIR` besides): "
-            "2D section: `rockdem_bench_rock %s`; 3D slab: `rockdem_bench_rock %s`; 3D box: `rockdem_bench_rock %s`, "
+    thick = any(k == "thick" for k, _ in done) or any(k == "thick" for k, _ in missing)
+    text = ("Commands (seed S; the same rock, options and strain per step for all, `--dump DIR` besides): "
+            "2D section: `rockdem_bench_rock %s`; 3D slab: `rockdem_bench_rock %s`%s; 3D box: `rockdem_bench_rock %s`, "
             "with `--seed` %s (%s; load average %.2f-%.2f before the runs, %d runs, %.0f s wall in all; each run's "
             "command, load and output in `atlas_runs/dims_KIND_sS.txt`). The particle counts give each specimen the "
             "nominal width of the box of %d grains (%.2f mm); the band statistic is that of "
@@ -1324,6 +1331,8 @@ def dims_section(bench, cfg, work, out, new_runs=True, only=None):
             "box's +- its standard error:\n\n%s\n\nEach specimen:\n\n%s%s") % (
         example["2d"].replace("--seed %d" % first_seed, "--seed S"),
         example["slab"].replace("--seed %d" % first_seed, "--seed S"),
+        (" (the thicker slab: the same with `--particles %d --depth %g`)" % (counts["thick"], c["thick_depth"])
+         if thick else ""),
         example["box"].replace("--seed %d" % first_seed, "--seed S"),
         ", ".join("%d" % s for s in c["seeds"]), machine(), min(loads) if loads else math.nan,
         max(loads) if loads else math.nan, len(done), sum(r["wall"] for r in done.values()), c["box"], width * 1e3,
