@@ -36,9 +36,18 @@ ones when the sweep is cut short; --no-new-runs writes the section from the runs
 names the missing ones.
 Rate against seeds (rate_seeds, not in the default list): the resolution sweep's 700-grain specimens at
 4 x and 1 x the Suggested Strain Rate beside their sweep test (the rate effect, paired by seed).
+2D against 3D (dims): the same rock as a 2D section of discs, a 3D slab of the same width and height a few
+mean diameters thick (bench --depth) and the 3D box of the same width, undamped, at the same strain per
+step, pack seeds 1-3: UCS, E, nu, sigma_t, the fracture pattern (broken at the peak, near the platens,
+the band statistic of scripts/localisation_index.py after the peak, the DFN), steps, particle-steps and
+run time; images/speed_accuracy_dims.png (cost against the difference in UCS, and the cracks of seed 1 of
+each: the 2D section, the slab's and the box's mid-plane). Dumps in WORK/dims_dumps (not committed).
+CPU threads (threads) also runs the test on the GPU (Vulkan) backend (bench --device gpu; lavapipe here,
+a CPU emulation, or the CPU when no device can run it).
 
---quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison, resolution on
-120 and 250 grains with two seeds at 4e-7 strain per step, into
+--quick (ctest Atlas.Quick): 300 grains, three rates, two moduli, one thread comparison (and the GPU
+request), resolution on 120 and 250 grains with two seeds at 4e-7 strain per step, 2D against 3D on one
+seed of a 55-disc section, a 175-grain slab and a 300-grain box at 4e-7 per step, into
 OUT (a scratch folder); asserts that the charts and tables were written and every number in
 them is finite. Each bench run's output is kept in WORK (default OUT/atlas_runs) with its
 command on the first line and is reused when the command is the same (delete it to rerun;
@@ -268,24 +277,62 @@ def modulus_section(bench, cfg, work, out):
     return text, rows, [image]
 
 
+GPU_PATH = re.compile(r"^rate-sweep-path: factor \S+ (.*)$")
+
+
+def parse_with_path(lines):
+    """parse() and the path the test stepped on (bench --device), in each row's "path"."""
+    rows = parse(lines)
+    paths = [m.group(1) for m in (GPU_PATH.search(line) for line in lines) if m]
+    for row, path in zip(rows, paths):
+        row["path"] = path
+    return rows
+
+
 def threads_section(bench, cfg, work, out):
+    """The same test on 1 and 2 CPU threads and on the GPU (Vulkan) backend (bench --device gpu: the
+    Vulkan device of the machine, lavapipe here, or the CPU when none can run it; the row says which)."""
     rows = []
     notes = []
-    for threads in (1, 2):
+    for threads, device in ((1, "cpu"), (2, "cpu"), (1, "gpu")):
         args = ["--particles", str(cfg["particles"]), "--threads", str(threads), "--tests", "rates",
-                "--rate-factors", "%g" % cfg["threads_factor"]] + ROCK
-        r, note = run(bench, args, work, "threads_%d" % threads, cfg is FULL)
+                "--rate-factors", "%g" % cfg["threads_factor"]] + ROCK + (["--device", "gpu"] if device == "gpu" else [])
+        r, note = run(bench, args, work, "threads_%d" % threads if device == "cpu" else "threads_gpu", cfg is FULL,
+                      parse_with_path)
         r[0]["threads"] = threads
+        r[0]["device"] = device
         rows.append(r[0])
         notes.append(note)
-    same = rows[0]["ucs_text"] == rows[1]["ucs_text"] and rows[0]["steps"] == rows[1]["steps"]
-    body = table(["threads", "UCS (Pa), all digits", "steps", "run time (s)"],
-                 [["%d" % r["threads"], r["ucs_text"], "%d" % r["steps"], "%.1f" % r["seconds"]] for r in rows])
-    text = "Command: `rockdem_bench_rock --particles %d --threads T --tests rates --rate-factors %g %s` (%s; %s).\n\n%s\n\n" \
-        "Bitwise agreement of the UCS and the step count: **%s**; speed-up %.2f." % (
+    cpu1, cpu2, gpu = rows
+    same = cpu1["ucs_text"] == cpu2["ucs_text"] and cpu1["steps"] == cpu2["steps"]
+    gpu_same = cpu1["ucs_text"] == gpu["ucs_text"] and cpu1["steps"] == gpu["steps"]
+    on_gpu = gpu.get("path", "").startswith("GPU Vulkan")
+    lavapipe = "llvmpipe" in gpu.get("path", "") or "lavapipe" in gpu.get("path", "")
+
+    def label(r):
+        if r["device"] == "cpu":
+            return "CPU, %d thread%s" % (r["threads"], "s" if r["threads"] > 1 else "")
+        return "GPU requested (`--device gpu`): %s" % r.get("path", "path not printed")
+    body = table(["path", "UCS (Pa), all digits", "steps", "run time (s)"],
+                 [[label(r), r["ucs_text"], "%d" % r["steps"], "%.1f" % r["seconds"]] for r in rows])
+    if on_gpu:
+        device_note = ("The GPU row ran on the Vulkan backend%s: UCS and step count against 1 CPU thread bit for bit: "
+                       "**%s**; its time against 1 CPU thread: %.2f x." % (
+                           " on lavapipe, Mesa's Vulkan driver that runs the compute shaders on the same two CPU cores "
+                           "(a CPU emulation of a GPU: its time is not a GPU's time)" if lavapipe else "",
+                           "yes" if gpu_same else "NO",
+                           gpu["seconds"] / cpu1["seconds"] if cpu1["seconds"] > 0 else math.nan))
+    else:
+        device_note = ("The GPU request fell back to the CPU (%s): no GPU time was measured; the row only shows that "
+                       "the fallback gives the CPU's answer (bit for bit: %s)." % (gpu.get("path", "?"),
+                                                                                  "yes" if gpu_same else "NO"))
+    text = "Command: `rockdem_bench_rock --particles %d --threads T --tests rates --rate-factors %g %s` with T 1 and 2, " \
+        "and with T 1 and `--device gpu` (%s; %s).\n\n%s\n\n" \
+        "Bitwise agreement of the UCS and the step count, 1 and 2 CPU threads: **%s**; speed-up %.2f. %s" % (
             cfg["particles"], cfg["threads_factor"], " ".join(ROCK), machine(), "; ".join(notes), body,
-            "yes" if same else "NO", rows[0]["seconds"] / rows[1]["seconds"] if rows[1]["seconds"] > 0 else math.nan)
-    return text, rows, []
+            "yes" if same else "NO", cpu1["seconds"] / cpu2["seconds"] if cpu2["seconds"] > 0 else math.nan,
+            device_note)
+    return text, [{k: v for k, v in r.items() if isinstance(v, float)} for r in rows], []
 
 
 def parse_probes(lines):
@@ -983,6 +1030,317 @@ def rate_seeds_section(bench, cfg, work, out, new_runs=True):
         "; ".join(summary))
     return text, [{"d": v} for k in diffs for v in diffs[k]], []
 
+# 2D against 3D (issue 17, "Contact law and 2D against 3D"): the same rock as a 2D section of
+# discs (bench --dimension 2: discs in the XY plane, slab 2 mm, loaded along Y), as a 3D slab of
+# the same width and height and a few mean diameters thick (bench --depth D: Y = D nominal mean
+# diameters, loaded along Z), and as the usual 3D box of the same width (square cross-section).
+# Undamped test (--damping 0: Settling Damping 0.7 during a test acts as a strength, "The defaults
+# justified"), the same platen strain per step for every specimen, unconfined compression then direct
+# tension on a fresh copy of the same specimen; --dump writes the unconfined specimen at 70 % of the
+# peak (the pictures and the band statistic of scripts/localisation_index.py). The particle counts
+# give every specimen the nominal width of the box of "box" grains, by the bench's own sizing
+# (buildSpecimen: the box holds N grains of mean volume V at --porosity, 0.36 in 3D, 0.16 in 2D).
+FULL["dims"] = {"box": 8000, "depth": 4, "seeds": [1, 2, 3], "strain_per_step": 5e-8, "max_strain": 0.005,
+                "min_peak_strain": 2e-5,
+                # the order: seed 1 of every kind first, then the cheap kinds' other seeds, then the boxes'
+                "order": [("2d", 1), ("slab", 1), ("box", 1), ("2d", 2), ("2d", 3), ("slab", 2), ("slab", 3),
+                          ("box", 2), ("box", 3), ("thick", 1), ("thick", 2), ("thick", 3)], "directions": 2000,
+                # a slab twice as thick (run after the others): where a slab approaches the box
+                "thick_depth": 8}
+QUICK["dims"] = {"box": 300, "depth": 3, "seeds": [1], "strain_per_step": 4e-7, "max_strain": 0.005,
+                 "min_peak_strain": 2e-5, "order": [("2d", 1), ("slab", 1), ("box", 1)], "directions": 100,
+                 "thick_depth": 6}
+DIMS_KINDS = [("2d", "2D section"), ("slab", "3D slab"), ("thick", "3D slab, thicker"), ("box", "3D box")]
+DIMS_RMIN, DIMS_RMAX, DIMS_SLAB, DIMS_ASPECT = 0.001, 0.002, 0.002, 2.0  # the bench's defaults
+DIMS_PATTERNS = dict(
+    RES_PATTERNS,
+    particles=r"^specimen: .*?(\d+) particles, ",
+    across=r"^specimen: .* (\S+) mean diameters across",
+    size_y=r"^specimen: .*particles, \S+ x (\S+) x",
+    near_platens=r"^UCS .*broken within 2 diameters of a platen: (\S+) %",
+    depth_across=r"along Y = (\S+) mean diameters",
+    broken_70=r"^UCS .*; broken \d+ \((\S+) % of bonds\); 70 % of peak",
+    tension_steps=r"^direct tension .*\((\d+) steps, \S+ s\)",
+    skin_broken=r"outer grain layer .*?: (\S+) % of the broken bonds",
+    skin_all=r"outer grain layer .*?: \S+ % of the broken bonds, (\S+) % of all bonds",
+)
+DIMS_BAND_LINE = re.compile(r"^dims-band: excess (\S+) control (\S+) plane (\S+) deg cracks (\d+)", re.M)
+
+def dims_counts(box, depth, thick_depth):
+    """The nominal width (m) of a 3D box of `box` grains, and {kind: particles} giving the 2D section and the
+    slab (`depth` nominal mean diameters thick) that width (and twice it as height), by the bench's sizing."""
+    a, b = DIMS_RMIN, DIMS_RMAX
+    v3 = 4.0 / 3.0 * math.pi * (a + b) * (a * a + b * b) / 4.0  # mean sphere volume
+    a2 = math.pi * (a * a + a * b + b * b) / 3.0                 # mean disc area (x the slab: its volume)
+    width = (box * v3 / (1.0 - 0.36) / DIMS_ASPECT) ** (1.0 / 3.0)
+    return width, {"box": box, "2d": int(round(width * width * DIMS_ASPECT * (1.0 - 0.16) / a2)),
+                   "slab": int(round(width * width * DIMS_ASPECT * depth * (a + b) * (1.0 - 0.36) / v3)),
+                   "thick": int(round(width * width * DIMS_ASPECT * thick_depth * (a + b) * (1.0 - 0.36) / v3))}
+
+
+def dims_args(c, kind, seed, counts):
+    n = counts[kind]
+    extra = {"2d": ["--dimension", "2"], "slab": ["--depth", "%g" % c["depth"]],
+             "thick": ["--depth", "%g" % c["thick_depth"]], "box": []}[kind]
+    return (["--particles", str(n)] + extra + ["--seed", str(seed), "--threads", "1", "--tests", "ucs,tension",
+                                               "--damping", "0", "--strain-per-step", "%g" % c["strain_per_step"]]
+            + ROCK[:-2] + ["--max-strain", "%g" % c["max_strain"], "--min-peak-strain", "%g" % c["min_peak_strain"]])
+
+
+def dims_band(dump, count):
+    """The band statistic of the cracks formed after the peak (scripts/localisation_index.py: the strip or
+    slab 4 mean diameters wide, over `count` directions in 3D, every degree in 2D, holding the largest excess
+    of the cracks' share over its share of the specimen): (excess, the control's excess, the plane's angle
+    from the loading axis in degrees, cracks)."""
+    import numpy as np
+    from localisation_index import band_excess, directions, dip
+    from failed_dump import read_dump
+    g, b = read_dump(dump)
+    flat = np.ptp(g[:, 2]) == 0.0
+    after = b[b[:, 3] == 1][:, 0:3]
+    if len(after) < 10:
+        return math.nan, math.nan, math.nan, len(after)
+    box = (g[:, 0:3].min(axis=0), g[:, 0:3].max(axis=0))
+    (e, _, _, n), (ec, _, _, _) = band_excess(after, box, directions(2 if flat else 3, count),
+                                              4.0 * 2.0 * g[:, 3].mean(), np.random.default_rng(1))
+    return e, ec, dip(n, 1 if flat else 2), len(after)
+
+
+def dims_runs(bench, cfg, work, new_runs, only=None):
+    """Runs (or reuses) the section's bench runs in their order (only those named in `only`, KIND:SEED, when
+    given: to split the runs over processes); {(kind, seed): figures}, the missing runs, counts, width."""
+    c = cfg["dims"]
+    width, counts = dims_counts(c["box"], c["depth"], c["thick_depth"])
+    done, missing = {}, []
+    for kind, seed in c["order"]:
+        name = "dims_%s_s%d" % (kind, seed)
+        dump = os.path.join(work, "dims_dumps", name)
+        args = dims_args(c, kind, seed, counts) + ["--dump", dump]
+        path = os.path.join(work, name + ".txt")
+        have = False
+        if cfg is FULL and os.path.exists(path):
+            with open(path) as f:
+                have = f.readline().rstrip("\n") == "# command: " + " ".join(args)
+        if not have and (not new_runs or (only and "%s:%d" % (kind, seed) not in only)):
+            missing.append((kind, seed))
+            continue
+        if not have:
+            os.makedirs(dump, exist_ok=True)
+            print("atlas: dims: %s (started %s, load average %.2f)"
+                  % (name, time.strftime("%H:%M:%S UTC", time.gmtime()), os.getloadavg()[0]), flush=True)
+        r, note = run(bench, args, work, name, have, parse_resolution_like)
+        row = r[0]
+        row["wall"] = float(re.search(r"(\S+) s wall for the whole command", note).group(1))
+        row["load"] = float(re.search(r"load average (\S+) ", note).group(1))
+        # The band statistic: computed from the dump once and kept as a "dims-band:" line at the end of the
+        # run's file (the dumps are not committed), read from there afterwards.
+        with open(path) as f:
+            kept = DIMS_BAND_LINE.search(f.read())
+        row["dump"] = os.path.join(dump, "ucs_failed.csv")
+        if kept:
+            row["band"], row["band_control"], row["band_plane"] = (float(v) for v in kept.groups()[:3])
+            row["band_cracks"] = int(kept.group(4))
+        elif os.path.exists(row["dump"]):
+            row["band"], row["band_control"], row["band_plane"], row["band_cracks"] = dims_band(
+                row["dump"], c["directions"])
+            with open(path, "a") as f:
+                f.write("dims-band: excess %.6g control %.6g plane %.4g deg cracks %d (the cracks after the peak of "
+                        "%s, %d directions)\n" % (row["band"], row["band_control"], row["band_plane"],
+                                                   row["band_cracks"], row["dump"], c["directions"]))
+        else:
+            row["band"] = row["band_control"] = row["band_plane"] = math.nan
+            row["band_cracks"] = 0
+        row["args"] = args
+        done[(kind, seed)] = row
+    return done, missing, counts, width
+
+
+def parse_resolution_like(lines):
+    row = first_matches(DIMS_PATTERNS, lines)
+    if math.isnan(row["particles"]) or math.isnan(row["total"]) or math.isnan(row["ucs"]):
+        sys.exit("dims: an incomplete bench output (no specimen, UCS or total line)")
+    return [row]
+
+
+def dims_picture(ax, dump, kind, title):
+    """The specimen at 70 % of the peak: the grains (2D: all; 3D: those within one mean diameter of the
+    mid-plane XZ) in light grey, the bonds broken before the peak as grey dots, after it as red dots."""
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Circle
+    grains, cracks = [], []
+    with open(dump) as f:
+        header = f.readline().strip().split(",")
+        ix = {k: i for i, k in enumerate(header)}
+        for line in f:
+            v = line.rstrip("\n").split(",")
+            x, y, z = float(v[ix["x"]]), float(v[ix["y"]]), float(v[ix["z"]])
+            if v[0] == "particle":
+                grains.append((x, y, z, float(v[ix["radius"]])))
+            else:
+                cracks.append((x, y, z, int(v[ix["after_peak"]])))
+    planar = kind == "2d"
+    d = 2.0 * sum(g[3] for g in grains) / len(grains)
+    cy = sum(g[1] for g in grains) / len(grains)
+
+    def keep(p):
+        return planar or abs(p[1] - cy) <= d
+
+    def xy(p):
+        return (p[0] * 1e3, (p[1] if planar else p[2]) * 1e3)
+    ax.add_collection(PatchCollection([Circle(xy(g), g[3] * 1e3) for g in grains if keep(g)], facecolor="0.88",
+                                      edgecolor="0.75", linewidth=0.2))
+    for after, colour, label in ((0, "0.45", "broken before the peak"), (1, "red", "after the peak")):
+        pts = [xy(p) for p in cracks if keep(p) and p[3] == after]
+        if pts:
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], ".", color=colour, markersize=1.6,
+                    label="%s (%d)" % (label, len(pts)))
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("%s (mm, loading axis)" % ("y" if planar else "z"))
+    ax.set_title(title, fontsize=9)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=7, markerscale=4, frameon=False)
+
+
+def dims_section(bench, cfg, work, out, new_runs=True, only=None):
+    c = cfg["dims"]
+    done, missing, counts, width = dims_runs(bench, cfg, work, new_runs, only)
+    names = dict(DIMS_KINDS, slab="3D slab, %g diameters" % c["depth"], thick="3D slab, %g diameters" % c["thick_depth"])
+    kinds = [(k, names[k]) for k, _ in DIMS_KINDS]
+    for r in done.values():
+        steps = r["compact_steps"] + r["ucs_steps"] + (r["tension_steps"] if math.isfinite(r["tension_steps"]) else 0)
+        r["particle_steps"] = r["particles"] * steps
+        r["ratio"] = r["ucs"] / r["tension"] if r["tension"] > 0 else math.nan
+        r["broken_peak_share"] = r["broken_peak"]
+    stats = {}
+    for kind, _ in kinds:
+        recs = [done[(kind, s)] for s in c["seeds"] if (kind, s) in done]
+        if recs:
+            stats[kind] = {k: mean_sd([r[k] for r in recs]) for k in (
+                "ucs", "E", "nu", "tension", "ratio", "across", "porosity", "coordination", "bonds", "particles",
+                "broken_peak", "near_platens", "band", "band_control", "disc_share", "discs", "total", "wall",
+                "particle_steps", "ucs_steps", "peak_strain", "skin_broken", "skin_all", "timestep", "rate_factor", "rate")}
+            stats[kind]["seeds"] = [s for s in c["seeds"] if (kind, s) in done]
+    ref = stats.get("box")
+
+    def diff(kind, key):
+        """The difference of the mean from the box's (%) +- its standard error from both seed spreads."""
+        if not ref or kind == "box" or key not in stats[kind]:
+            return ""
+        m, sd, n = stats[kind][key]
+        rm, rsd, rn = ref[key]
+        if not (math.isfinite(m) and math.isfinite(rm) and rm):
+            return ""
+        se = math.sqrt((sd ** 2 / n if n > 1 and math.isfinite(sd) else 0.0)
+                       + (rsd ** 2 / rn if rn > 1 and math.isfinite(rsd) else 0.0))
+        return " (%+.1f +- %.1f %%)" % (100.0 * (m - rm) / rm, 100.0 * se / abs(rm)) if se > 0 else \
+            " (%+.1f %%)" % (100.0 * (m - rm) / rm)
+
+    def ms(kind, key, scale, fmt):
+        m, sd, n = stats[kind][key]
+        if not math.isfinite(m):
+            return "-"
+        return (fmt % (m / scale)) + ((" +- " + fmt % (sd / scale)) if n > 1 and math.isfinite(sd) else "")
+    summary = []
+    for kind, label in kinds:
+        if kind not in stats:
+            continue
+        st = stats[kind]
+        summary.append([
+            label, ",".join("%d" % s for s in st["seeds"]), "%d" % st["particles"][0], "%.1f" % st["across"][0],
+            "%.3f / %.2f" % (st["porosity"][0], st["coordination"][0]),
+            "%.3g s, %.3g 1/s (%.1f x)" % (st["timestep"][0], st["rate"][0], st["rate_factor"][0]),
+            ms(kind, "ucs", 1e6, "%.2f") + diff(kind, "ucs"), ms(kind, "E", 1e9, "%.2f") + diff(kind, "E"),
+            ms(kind, "nu", 1.0, "%.3f"), ms(kind, "tension", 1e6, "%.3f") + diff(kind, "tension"),
+            ms(kind, "ratio", 1.0, "%.2f"), ms(kind, "broken_peak", 1.0, "%.1f %%"),
+            ms(kind, "near_platens", 1.0, "%.1f %%"),
+            ms(kind, "band", 1.0, "%.3f") + " (%.3f)" % st["band_control"][0],
+            "%.1f / %.1f %%" % (st["discs"][0], st["disc_share"][0]),
+            "%.0f" % st["ucs_steps"][0], "%.3g" % st["particle_steps"][0], "%.1f" % st["total"][0]])
+    head = ["specimen", "seeds", "particles", "across", "porosity / bonded coordination",
+            "timestep, strain rate (x Suggested Strain Rate)", "UCS (MPa)", "E (GPa)", "nu",
+            "sigma_t (MPa)", "UCS / sigma_t", "bonds broken at the peak", "broken near the platens",
+            "band excess after the peak (control)", "DFN: discs / broken bonds in discs", "steps to 70 % of the peak",
+            "particle-steps (compaction, UCS, tension)", "seconds (whole run)"]
+    per = []
+    for (kind, seed), r in sorted(done.items(), key=lambda kv: ([k for k, _ in kinds].index(kv[0][0]), kv[0][1])):
+        per.append([names[kind], "%d" % seed, "%d" % r["particles"], "%.1f" % r["across"],
+                    "%.1f" % r["depth_across"] if kind in ("slab", "thick") else "-",
+                    "%.3f" % r["porosity"], "%d (%.2f)" % (r["bonds"], r["coordination"]), "%.3f" % (r["ucs"] / 1e6),
+                    "%.5f" % r["peak_strain"], "%.2f" % (r["E"] / 1e9), "%.3f" % r["nu"],
+                    "%.3f" % (r["tension"] / 1e6), "%.2f" % r["ratio"], "%.1f / %.1f %%" % (r["broken_peak"], r["broken_70"]),
+                    "%.1f %%" % r["near_platens"], "%.3f (%.3f), %.0f deg" % (r["band"], r["band_control"],
+                                                                           r["band_plane"]),
+                    "%d / %.1f %%" % (r["discs"], r["disc_share"]), "%.1f / %.1f %%" % (r["skin_broken"], r["skin_all"]),
+                    "%d / %d" % (r["ucs_steps"], r["tension_steps"]), "%.3g" % r["particle_steps"],
+                    "%.1f" % r["total"], "%.2f" % r["load"]])
+    per_head = ["specimen", "seed", "particles", "across", "depth (mean diameters)", "porosity",
+                "bonds (coordination)", "UCS (MPa)", "strain at peak", "E (GPa)", "nu", "sigma_t (MPa)",
+                "UCS / sigma_t", "bonds broken at the peak / at 70 % of it", "broken near the platens", "band excess after the peak (control), "
+                "plane from the axis", "DFN discs / share", "outer layer: share of broken / of all bonds",
+                "steps UCS / tension", "particle-steps", "seconds", "load average before"]
+    # The chart: cost against the difference in UCS from the box's mean (each seed, and the means), and the
+    # fracture pattern of seed 1 of each kind.
+    import matplotlib.gridspec as gridspec
+    first_seed = c["seeds"][0]
+    pics = [(k, done[(k, first_seed)]) for k in ("2d", "slab", "box")
+            if (k, first_seed) in done and os.path.exists(done[(k, first_seed)]["dump"])]
+    fig = plt.figure(figsize=(4.2 + 3.0 * len(pics), 6.4))
+    grid = gridspec.GridSpec(1, 1 + len(pics), width_ratios=[1.5] + [1.0] * len(pics), figure=fig)
+    ax = fig.add_subplot(grid[0, 0])
+    colours = {"2d": "tab:blue", "slab": "tab:orange", "thick": "tab:red", "box": "tab:green"}
+    if ref:
+        for kind, label in kinds:
+            recs = [done[(kind, s)] for s in c["seeds"] if (kind, s) in done]
+            if not recs:
+                continue
+            ax.semilogx([r["total"] for r in recs], [pct(r["ucs"], ref["ucs"][0]) for r in recs], "o",
+                        color=colours[kind], alpha=0.45)
+            m = stats[kind]
+            ax.errorbar([m["total"][0]], [pct(m["ucs"][0], ref["ucs"][0])],
+                        yerr=[100.0 * m["ucs"][1] / ref["ucs"][0] if m["ucs"][2] > 1 else 0.0], fmt="s",
+                        color=colours[kind], markersize=8, capsize=4,
+                        label="%s (%d particles; mean +- sd)" % (label, m["particles"][0]))
+        ax.axhline(0.0, color="0.6", linewidth=0.8)
+        from matplotlib.ticker import NullFormatter
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        seconds = [r["total"] for r in done.values()]
+        ax.set_xlim(10 ** math.floor(math.log10(min(seconds))), 10 ** math.ceil(math.log10(max(seconds))))
+        ax.set_xlabel("seconds per specimen, whole run (one thread)")
+        ax.set_ylabel("UCS against the 3D box's mean (%)")
+        ax.set_title("Cost against the difference in UCS\n(dots: seeds; squares: means)", fontsize=9)
+        ax.legend(fontsize=7, loc="best")
+    else:
+        ax.axis("off")
+        ax.text(0.5, 0.5, "no 3D box run yet:\nno reference for the UCS", ha="center", va="center")
+    for i, (kind, r) in enumerate(pics):
+        a = fig.add_subplot(grid[0, 1 + i])
+        dims_picture(a, r["dump"], kind, "%s, seed %d, at 70 %% of the peak\n%s" % (
+            names[kind], first_seed, "all discs" if kind == "2d" else "mid-plane XZ, +- one mean diameter"))
+    image = save_chart(fig, out, "speed_accuracy_dims.png")
+    example = {k: " ".join(dims_args(c, k, first_seed, counts)) for k, _ in kinds}
+    loads = [r["load"] for r in done.values()]
+    thick = any(k == "thick" for k, _ in done) or any(k == "thick" for k, _ in missing)
+    text = ("Commands (seed S; the same rock, options and strain per step for all, `--dump DIR` besides): "
+            "2D section: `rockdem_bench_rock %s`; 3D slab: `rockdem_bench_rock %s`%s; 3D box: `rockdem_bench_rock %s`, "
+            "with `--seed` %s (%s; load average %.2f-%.2f before the runs, %d runs, %.0f s wall in all; each run's "
+            "command, load and output in `atlas_runs/dims_KIND_sS.txt`). The particle counts give each specimen the "
+            "nominal width of the box of %d grains (%.2f mm); the band statistic is that of "
+            "`scripts/localisation_index.py DIR/ucs_failed.csv` (4 mean diameters wide) on each run's dump.\n\n"
+            "Mean over the seeds +- their standard deviation, and (in brackets) the difference of the mean from the 3D "
+            "box's +- its standard error:\n\n%s\n\nEach specimen:\n\n%s%s") % (
+        example["2d"].replace("--seed %d" % first_seed, "--seed S"),
+        example["slab"].replace("--seed %d" % first_seed, "--seed S"),
+        (" (the thicker slab: the same with `--particles %d --depth %g`)" % (counts["thick"], c["thick_depth"])
+         if thick else ""),
+        example["box"].replace("--seed %d" % first_seed, "--seed S"),
+        ", ".join("%d" % s for s in c["seeds"]), machine(), min(loads) if loads else math.nan,
+        max(loads) if loads else math.nan, len(done), sum(r["wall"] for r in done.values()), c["box"], width * 1e3,
+        table(head, summary), table(per_head, per),
+        ("\n\n**Not run** (kind/seed): %s." % ", ".join("%s/%d" % m for m in missing)) if missing else "")
+    rows = [{k: r[k] for k in ("ucs", "E", "tension", "total", "particle_steps", "wall")} for r in done.values()]
+    return text, rows, [image]
+
 
 def write_page(path, sections):
     """Replaces the text between <!-- atlas:NAME --> and <!-- /atlas:NAME --> (or writes a page)."""
@@ -1011,7 +1369,9 @@ def main():
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--no-new-runs", action="store_true",
                         help="resolution: write the table from the runs in WORK only, listing the missing ones")
-    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law,resolution",
+    parser.add_argument("--dims-runs", default="",
+                        help="dims: run only these of its runs (KIND:SEED comma list; to split them over processes)")
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law,resolution,dims",
                         help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
@@ -1023,7 +1383,9 @@ def main():
               "stability": stability_section, "timestep_bonded": timestep_bonded_section,
               "contact_law": contact_law_section,
               "resolution": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs),
-              "rate_seeds": lambda *a: rate_seeds_section(*a, new_runs=not o.no_new_runs)}
+              "rate_seeds": lambda *a: rate_seeds_section(*a, new_runs=not o.no_new_runs),
+              "dims": lambda *a: dims_section(*a, new_runs=not o.no_new_runs,
+                                              only=o.dims_runs.split(",") if o.dims_runs else None)}
     for name in o.only.split(","):
         text, rows, files = makers[name](o.bench, cfg, work, o.out)
         sections[name] = text

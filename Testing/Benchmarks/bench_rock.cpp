@@ -68,6 +68,15 @@
 //     default 2 mm), a W x aspect W rectangle compacted to --porosity (default 0.16 in 2D,
 //     0.36 in 3D), loaded along Y; --tests ucs, tension, triaxial and rates (the others
 //     and --specimen cylinder are refused).
+//   --depth D (3D, mean diameters): a slab instead of the square cross-section: the box is W x
+//     D (rmin + rmax) x aspect W (X x Y x Z, loaded along Z), W from the particle count at
+//     --porosity as before; 0 (default): W x W x aspect W. A slab of the width of a 2D section
+//     (examples/speed_accuracy_atlas.py, section "dims"). Only with --specimen box and the
+//     tests that load the box (ucs, tension, triaxial, rates, tsmap, servomap).
+//   --device cpu|gpu: the tests step on the CPU backend (default) or request the GPU (Vulkan)
+//     backend (dem::SolverDevice::GPU; the CPU when no device can run it); each test's path
+//     ("CPU serial ...", "GPU Vulkan: <device>", or the fallback and why) is printed on a
+//     "path:" line (--tests rates: "rate-sweep-path:").
 // Every option is listed by --help. SI units.
 #include "CommaList.h"
 #include "dem/Bonds.h"
@@ -109,6 +118,7 @@ struct Options {
   double rmax = 0.002;          // m
   double porosity = -1.0;       // Compact Elements target; < 0: 0.36 (3D), 0.16 (2D)
   double slab = 0.002;          // m, 2D: the slab thickness (a disc weighs rho pi r^2 t, a bond's section is 2 r t)
+  double depth = 0.0;           // 3D: > 0, the box's Y size in nominal mean diameters (rmin + rmax); 0: square (Y = X)
   double modulus = 1e8;         // Pa, grains and bonds
   double friction = 0.5;
   double rolling = 0.0;
@@ -153,6 +163,7 @@ struct Options {
   bool profile = false;         // print the broken-bond profile along the axis
   bool lengthStiffness = false; // experiment: kn = Bond Modulus / (bond length at cementing)
   ContactLaw contactLaw = ContactLaw::HertzMindlin; // --contact-law hertz|linear: the grains' law from the pack on
+  SolverDevice device = SolverDevice::CPU;          // --device cpu|gpu: where the tests step
 };
 
 Options parse(int argc, char** argv)
@@ -170,7 +181,7 @@ Options parse(int argc, char** argv)
     { "--inertial-target", &o.inertialTarget }, { "--bond-modulus", &o.bondModulus },
     { "--servo-alpha", &o.servoAlpha }, { "--max-steps", &o.maxSteps },
     { "--min-peak-strain", &o.minPeakStrain }, { "--triaxial-stop", &o.triaxialStop }, { "--ucs", &o.ucs },
-    { "--carve-margin", &o.carveMargin }, { "--slab", &o.slab } };
+    { "--carve-margin", &o.carveMargin }, { "--slab", &o.slab }, { "--depth", &o.depth } };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (doubles.count(a) && i + 1 < argc) {
@@ -216,9 +227,17 @@ Options parse(int argc, char** argv)
         std::exit(2);
       }
       o.contactLaw = law == "linear" ? ContactLaw::Linear : ContactLaw::HertzMindlin;
+    } else if (a == "--device" && i + 1 < argc) {
+      const std::string device = argv[++i];
+      if (device != "cpu" && device != "gpu") {
+        std::fprintf(stderr, "--device = %s is not a device: use cpu or gpu\n", device.c_str());
+        std::exit(2);
+      }
+      o.device = device == "gpu" ? SolverDevice::GPU : SolverDevice::CPU;
     } else {
       std::fprintf(stderr, "usage: %s [--particles N] [--tests ucs,tension,triaxial,brazilian,envelopes] [--confining f1,f2,..]"
-                           " [--specimen box|cylinder|both] [--dimension 3|2] [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]", argv[0]);
+                           " [--specimen box|cylinder|both] [--dimension 3|2] [--seed S] [--threads T] [--profile] [--contact-law hertz|linear]"
+                           " [--device cpu|gpu]", argv[0]);
       for (const auto& d : doubles) {
         std::fprintf(stderr, " [%s %g]", d.first.c_str(), *d.second);
       }
@@ -259,6 +278,32 @@ Options parse(int argc, char** argv)
     if (!(o.slab > 0.0)) {
       std::fprintf(stderr, "--slab = %g m is out of range: valid range is (0, inf)\n", o.slab);
       std::exit(2);
+    }
+  }
+  if (o.depth != 0.0) {
+    // A slab: a 3D box whose Y size is set apart from its width; the carved specimens assume
+    // the square cross-section.
+    if (!(o.depth >= 1.0 && o.depth <= 1000.0)) {
+      std::fprintf(stderr, "--depth = %g mean diameters is out of range: valid range is [1, 1000] (0, the default: "
+                           "a square cross-section)\n", o.depth);
+      std::exit(2);
+    }
+    if (o.dimension == 2) {
+      std::fprintf(stderr, "--depth = %g is not available with --dimension 2 (a 2D section's thickness is --slab, in m)\n",
+                   o.depth);
+      std::exit(2);
+    }
+    if (o.specimen != "box") {
+      std::fprintf(stderr, "--depth = %g is not available with --specimen %s (valid there: box)\n", o.depth,
+                   o.specimen.c_str());
+      std::exit(2);
+    }
+    for (const char* test : { "brazilian", "envelopes" }) {
+      if (o.tests.find(test) != std::string::npos) {
+        std::fprintf(stderr, "--tests %s is not available with --depth (valid there: ucs, tension, triaxial, rates, tsmap, servomap)\n",
+                     test);
+        std::exit(2);
+      }
     }
   }
   if (o.porosity < 0.0) {
@@ -302,12 +347,16 @@ Model buildSpecimen(const Options& o, CementReport& cemented, CompactReport& com
   const double meanVolume = planar ? kPi * o.slab * (a * a + a * b + b * b) / 3.0
                                    : 4.0 / 3.0 * kPi * (a + b) * (a * a + b * b) / 4.0;
   const double volume = o.particles * meanVolume / (1.0 - o.porosity);
-  const double width = planar ? std::sqrt(volume / (o.slab * o.aspect)) : std::cbrt(volume / o.aspect);
+  // A slab (--depth): Y is depth x the nominal mean diameter, X and Z share the rest.
+  const double depth = o.depth > 0.0 ? o.depth * (a + b) : 0.0;
+  const double width = planar ? std::sqrt(volume / (o.slab * o.aspect))
+                              : depth > 0.0 ? std::sqrt(volume / (depth * o.aspect)) : std::cbrt(volume / o.aspect);
   // The specimen's box; a cylinder carved with a margin comes from a pack that much wider on
   // each side (not longer: its ends stay the pack's flat walled faces, as a laboratory grinds
   // a core's ends flat; carved ends are rough and the platens crush the grains that stick
   // out), at the same grain density (the grain count scales with the volume).
-  const Vec3 specimenSize = planar ? Vec3(width, o.aspect * width, o.slab) : Vec3(width, width, o.aspect * width);
+  const Vec3 specimenSize = planar ? Vec3(width, o.aspect * width, o.slab)
+                                    : Vec3(width, depth > 0.0 ? depth : width, o.aspect * width);
   m.domain.section2D = planar;
   const double margin = carve == Carve::Cylinder ? o.carveMargin * (o.rmin + o.rmax) : 0.0;
   m.domain.size = specimenSize + Vec3(2.0 * margin, 2.0 * margin, 0.0);
@@ -416,6 +465,7 @@ struct TestResult {
   double timestep = 0.0;      // s
   double inertialAtPeak = 0.0;  // inertial number at the peak sample
   double ufrBeforePeak = 0.0;   // mean unbalanced force ratio over the samples up to the peak
+  std::string path;             // where the test stepped (Simulation::path())
 };
 
 /// Broken bonds near the platens (within two mean diameters of either end of the specimen
@@ -790,7 +840,8 @@ TestResult runTest(Model m, TestMode mode, double confining, const Options& o, b
     }
     return u;
   };
-  Simulation run(m);
+  Simulation run(m, o.device);
+  r.path = run.path();
   if (failed) {
     failed->surface.clear();
     failed->toFall.clear();
@@ -1229,8 +1280,13 @@ int main(int argc, char** argv)
   const Model m = buildSpecimen(o, cemented, compacted);
   const double width = m.domain.size.x();
   const double diameter = meanParticleDiameter(m);
+  char slabLabel[160] = "";
+  if (o.depth > 0.0) {
+    std::snprintf(slabLabel, sizeof slabLabel, "3D slab (depth %g nominal mean diameters along Y = %.1f mean diameters, loaded along Z), ",
+                  o.depth, m.domain.size.y() / diameter);
+  }
   std::printf("specimen: %s%zu particles, %.4g x %.4g x %.4g m, %.1f mean diameters across; %s\n",
-              m.domain.section2D ? "2D section (discs in XY, loaded along Y, slab = Z), " : "",
+              m.domain.section2D ? "2D section (discs in XY, loaded along Y, slab = Z), " : slabLabel,
               m.particles.size(), width, m.domain.size.y(), m.domain.size.z(), width / diameter,
               compacted.summary().c_str());
   std::printf("cement: Bond Range %.3g, Moment Contribution %.3g, Softening Ratio %.3g -> %s (%.1f s)\n", o.range, o.beta, o.softening,
@@ -1279,6 +1335,7 @@ int main(int argc, char** argv)
                 "inertial number at the peak %.4g; mean unbalanced force ratio up to the peak %.4g\n",
                 u.strainRate, u.suggested > 0.0 ? u.strainRate / u.suggested : 0.0, u.suggested, u.timestep,
                 u.inertialAtPeak, u.ufrBeforePeak);
+    std::printf("  path: %s\n", u.path.c_str());
     std::printf("  broken at the peak: %zu (%.1f %% of bonds); softening then (intact, damage > 0): %zu (%.1f %%)\n  %s\n  %s\n",
                 u.brokenAtPeak, 100.0 * u.brokenAtPeak / bonds, u.softeningAtPeak,
                 100.0 * u.softeningAtPeak / bonds, u.damage.c_str(), u.earlyBreaks.c_str());
@@ -1312,6 +1369,7 @@ int main(int argc, char** argv)
                   "strain at peak %.6g E %.6g Pa inertial %.6g ufr %.6g steps %lld seconds %.3f peaked %d\n",
                   f, u.strainRate, u.suggested, u.target, u.timestep, u.peak, u.peakStrain, u.E, u.inertialAtPeak,
                   u.ufrBeforePeak, static_cast<long long>(u.steps), u.seconds, u.peaked ? 1 : 0);
+      std::printf("rate-sweep-path: factor %g %s\n", f, u.path.c_str());
       std::fflush(stdout);
     }
   }
@@ -1356,6 +1414,7 @@ int main(int argc, char** argv)
       const char* label = cylinder ? "cylinder " : "";
       std::printf("%sdirect tension %.4g Pa at strain %.4g; broken %zu (%lld steps, %.1f s)\n", label, t.peak,
                   t.peakStrain, t.broken, static_cast<long long>(t.steps), t.seconds);
+      std::printf("  path: %s\n", t.path.c_str());
       const double compression = cylinder ? cylinderUcs : ucs;
       if (compression > 0.0) {
         std::printf("%sUCS / sigma_t = %.2f\n", label, compression / t.peak);
