@@ -12,6 +12,7 @@
 #pragma once
 
 #include "dem/ContactLawKind.h"
+#include "dem/ContactLawLanes.h"
 #include "dem/Model.h"
 
 #include <cmath>
@@ -85,6 +86,9 @@ Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double
                    double normalForceMagnitude, const Vec3& n, const Vec3& rollIncrement,
                    Vec3& spring);
 
+/// The components of an Eigen vector as a dem::Lane3<double> (dem/ContactLawLanes.h).
+inline Lane3<double> toLanes(const Vec3& v) { return { v.x(), v.y(), v.z() }; }
+
 /// Removes the component of `v` along the unit normal `n` (projection onto the plane).
 inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
 
@@ -125,21 +129,19 @@ struct NormalResponse {
 inline NormalResponse hertzMindlinResponse(const ContactConstants& c, double overlap,
                                            double approachSpeed)
 {
-  const double root = std::sqrt(overlap);          // m^(1/2)
-  const double elastic = c.normalStiffness * overlap * root;
-  const double viscous = c.normalDamping * std::sqrt(root) * approachSpeed;
-  const double force = elastic + viscous;
-  return { elastic, force > 0.0 ? force : 0.0, 1.5 * c.normalStiffness * root,
-           c.tangentialStiffness * root };
+  // Written once, in dem/ContactLawLanes.h (the CPU backend's SIMD pair kernel runs it too).
+  const NormalResponseLanes<double> r = hertzMindlinResponseLanes(
+    c.normalStiffness, c.normalDamping, c.tangentialStiffness, overlap, approachSpeed);
+  return { r.elasticForce, r.force, r.stiffness, r.tangentialStiffness };
 }
 
 /// Linear spring-dashpot normal response: F = kn delta + 2 zeta sqrt(m* kn) d(delta)/dt,
 /// cut off at zero; constant stiffnesses.
 inline NormalResponse linearResponse(const ContactConstants& c, double overlap, double approachSpeed)
 {
-  const double elastic = c.normalStiffness * overlap;
-  const double force = elastic + c.normalDamping * approachSpeed;
-  return { elastic, force > 0.0 ? force : 0.0, c.normalStiffness, c.tangentialStiffness };
+  const NormalResponseLanes<double> r = linearResponseLanes(
+    c.normalStiffness, c.normalDamping, c.tangentialStiffness, overlap, approachSpeed);
+  return { r.elasticForce, r.force, r.stiffness, r.tangentialStiffness };
 }
 
 /// The normal response of the model's law (overlap > 0).
@@ -154,13 +156,8 @@ inline NormalResponse normalResponse(ContactLaw law, const ContactConstants& c, 
 /// normal to `n`, keeping its length: history follows the rotating contact plane.
 inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 {
-  const double length2 = v.squaredNorm();
-  if (length2 == 0.0) {
-    return Vec3::Zero();
-  }
-  const Vec3 projected = inPlane(v, n);
-  const double projected2 = projected.squaredNorm();
-  return projected2 > 0.0 ? Vec3(projected * std::sqrt(length2 / projected2)) : Vec3(Vec3::Zero());
+  const Lane3<double> r = rotateIntoPlaneLanes(toLanes(v), toLanes(n));
+  return Vec3(r.x, r.y, r.z);
 }
 
 /// Incremental tangential spring (Mindlin / Coulomb) with a known stiffness kt (N/m) and
@@ -170,15 +167,11 @@ inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 inline Vec3 mindlinCoulombForce(double kt, double friction, double normalForceMagnitude,
                                 const Vec3& n, const Vec3& slipIncrement, Vec3& spring)
 {
-  spring = rotateIntoPlane(spring, n) + slipIncrement;
-  const double limit = friction * normalForceMagnitude; // N, Coulomb: |Ft| <= mu Fn
-  const double trial2 = kt * kt * spring.squaredNorm();  // N^2
-  if (trial2 > limit * limit) {
-    // Gross sliding: keep the spring at the length that carries exactly mu Fn.
-    const double trial = std::sqrt(trial2);
-    spring *= (kt > 0.0 && trial > 0.0) ? limit / trial : 0.0;
-  }
-  return -kt * spring;
+  Lane3<double> s = toLanes(spring);
+  const Lane3<double> f =
+    mindlinCoulombForceLanes(kt, friction, normalForceMagnitude, toLanes(n), toLanes(slipIncrement), s);
+  spring = Vec3(s.x, s.y, s.z);
+  return Vec3(f.x, f.y, f.z);
 }
 
 /// Cundall local damping of one degree of freedom (PHYSICS.md s.1): F - alpha |F| sign(v),

@@ -1,0 +1,118 @@
+// RockDEM engine: the force of one touching particle pair, written once for a lane type S
+// (dem/ContactLawLanes.h): the CPU backend's scalar pair loop runs it with S = double, its
+// AVX2 kernel (TouchingPairsAvx2.cpp) on four pairs at once with the same operations in the
+// same order, so both give the same bits (and the GLSL twin, shaders/pair_forces.comp,
+// the same again). No Eigen here: the AVX2 translation unit includes this header.
+// SI units.
+#pragma once
+
+#include "dem/ContactLawLanes.h"
+
+#include <cstddef>
+#include <cstdint>
+
+// The law is inlined into both loops (out of line, its input and result would travel
+// through memory on every call).
+#if defined(__GNUC__)
+#define ROCKDEM_INLINE_LAW inline __attribute__((always_inline))
+#else
+#define ROCKDEM_INLINE_LAW inline
+#endif
+
+namespace dem {
+
+/// What the pair law reads of one pair (i < j), per lane.
+template <class S> struct TouchingPairInput {
+  Lane3<S> branch;   ///< m, from i to j (minimum image)
+  S distance;        ///< m, |branch| > 0
+  S overlap;         ///< m, r_i + r_j - distance > 0
+  S radiusI, radiusJ;
+  Lane3<S> velocityI, velocityJ; ///< m/s, half-step velocities
+  Lane3<S> spinI, spinJ;         ///< rad/s
+  Lane3<S> lastForceI, lastForceJ; ///< N, the forces of the last step
+  S inverseMassI, inverseMassJ;  ///< 1/kg
+  S normalStiffness, normalDamping, tangentialStiffness; ///< dem::ContactConstants
+};
+
+/// What it gives: the normal (unit, from i to j), the normal force magnitude, and the
+/// force on i (j gets the opposite) with the torques about both centres. The spring (m)
+/// is updated in place.
+template <class S> struct TouchingPairResult {
+  Lane3<S> normal;
+  S normalForce;
+  Lane3<S> force;
+  Lane3<S> torqueI, torqueJ;
+};
+
+/// The pair law of a touching pair: relative velocity at the contact point, the normal
+/// response of `hertz` (else linear) with the velocity predicted to the full step for its
+/// damping, the Mindlin-Coulomb spring with the half-step slip over `dt`, the torques.
+/// `predict` (s) is half the step (0 outside a real step, as `dt`).
+template <class S>
+ROCKDEM_INLINE_LAW TouchingPairResult<S> touchingPairForce(const TouchingPairInput<S>& in, bool hertz,
+                                               const S& friction, const S& dt, const S& predict,
+                                               Lane3<S>& spring)
+{
+  const Lane3<S> normal = divided(in.branch, in.distance);
+  const S armI = in.radiusI - 0.5 * in.overlap; // m, centre to contact point
+  const S armJ = in.radiusJ - 0.5 * in.overlap;
+  // Slip over the step uses the half-step velocities (exact for the displacement
+  // increment); the viscous damping uses the full-step velocities, predicted from the
+  // last forces, so that restitution does not drift with the number of steps per impact.
+  const Lane3<S> relativeVelocity = in.velocityI - in.velocityJ +
+    cross(in.spinI, scaled(armI, normal)) + cross(in.spinJ, scaled(armJ, normal));
+  const Lane3<S> predictedVelocity = relativeVelocity +
+    scaled(predict, scaled(in.inverseMassI, in.lastForceI) - scaled(in.inverseMassJ, in.lastForceJ));
+  const S approachSpeed = dot(predictedVelocity, normal);
+  const NormalResponseLanes<S> response = hertz
+    ? hertzMindlinResponseLanes(in.normalStiffness, in.normalDamping, in.tangentialStiffness,
+                                in.overlap, approachSpeed)
+    : linearResponseLanes(in.normalStiffness, in.normalDamping, in.tangentialStiffness,
+                          in.overlap, approachSpeed);
+  const S fn = response.force;
+  const Lane3<S> slip = scaled(dt, inPlaneLanes(relativeVelocity, normal));
+  const Lane3<S> ft =
+    mindlinCoulombForceLanes(response.tangentialStiffness, friction, fn, normal, slip, spring);
+  const Lane3<S> normalCrossFt = cross(normal, ft);
+  const S minusFn = -fn;
+  return { normal, fn, scaled(minusFn, normal) + ft, scaled(armI, normalCrossFt),
+           scaled(armJ, normalCrossFt) };
+}
+
+/// The pair arrays of the CPU backend as plain doubles (a Vec3 is three doubles), for the
+/// AVX2 kernel, which includes no Eigen.
+struct TouchingPairArrays {
+  const double* position;    ///< 3 per particle
+  const double* velocity;    ///< 3 per particle
+  const double* spin;        ///< 3 per particle
+  const double* lastForce;   ///< 3 per particle
+  const double* radius;
+  const double* inverseMass;
+  const std::uint32_t* pairI;
+  const std::uint32_t* pairJ;
+  const double* constants;   ///< dem::ContactConstants: 3 per pair
+  double* spring;            ///< 3 per pair
+  double* force;             ///< 3 per pair
+  double* torqueI;           ///< 3 per pair
+  double* torqueJ;           ///< 3 per pair
+  double* normal;            ///< 1 per pair
+  std::uint8_t* live;        ///< 1 per pair
+  std::uint8_t* touching;    ///< 1 per particle
+  bool hertz;
+  double friction;
+  double dt;
+  double predict;
+};
+
+/// True when this CPU runs the AVX2 kernel and ROCKDEM_CPU_SIMD is not 0 (the variable
+/// forces the scalar pair loop, for tests and comparisons). Decided once per process.
+bool touchingPairsAvx2Enabled();
+
+/// Evaluates the touching pairs `list[0..count)` (pair indices; each pair touches: distance
+/// > 0 and overlap > 0, plain differences of positions, no rolling resistance) four at a
+/// time with AVX2 and stores their results as the scalar loop does. Only call it when
+/// touchingPairsAvx2Enabled().
+void touchingPairsAvx2(const TouchingPairArrays& arrays, const std::uint32_t* list,
+                       std::size_t count);
+
+} // namespace dem
