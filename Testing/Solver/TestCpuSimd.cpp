@@ -167,28 +167,28 @@ TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
           springK[c] = 1e-5 * d[c] / length;
         }
       }
-      // Scalar reference.
-      TouchingPairInput<double> in;
-      in.branch = { pos[3 * j] - pos[3 * i], pos[3 * j + 1] - pos[3 * i + 1], pos[3 * j + 2] - pos[3 * i + 2] };
-      in.distance = std::sqrt(squaredNorm(in.branch));
+      // Scalar reference: the scalar loop's instance (Eigen vectors).
+      TouchingPairInput<Vec3> in;
+      in.branch = Vec3(pos[3 * j] - pos[3 * i], pos[3 * j + 1] - pos[3 * i + 1], pos[3 * j + 2] - pos[3 * i + 2]);
+      in.distance = std::sqrt(in.branch.squaredNorm());
       in.overlap = (radius[i] + radius[j]) - in.distance;
       ASSERT_GT(in.overlap, 0.0);
       in.radiusI = radius[i];
       in.radiusJ = radius[j];
-      in.velocityI = { velocity[3 * i], velocity[3 * i + 1], velocity[3 * i + 2] };
-      in.velocityJ = { velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2] };
-      in.spinI = { spin[3 * i], spin[3 * i + 1], spin[3 * i + 2] };
-      in.spinJ = { spin[3 * j], spin[3 * j + 1], spin[3 * j + 2] };
-      in.lastForceI = { lastForce[3 * i], lastForce[3 * i + 1], lastForce[3 * i + 2] };
-      in.lastForceJ = { lastForce[3 * j], lastForce[3 * j + 1], lastForce[3 * j + 2] };
+      in.velocityI = Vec3(velocity[3 * i], velocity[3 * i + 1], velocity[3 * i + 2]);
+      in.velocityJ = Vec3(velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2]);
+      in.spinI = Vec3(spin[3 * i], spin[3 * i + 1], spin[3 * i + 2]);
+      in.spinJ = Vec3(spin[3 * j], spin[3 * j + 1], spin[3 * j + 2]);
+      in.lastForceI = Vec3(lastForce[3 * i], lastForce[3 * i + 1], lastForce[3 * i + 2]);
+      in.lastForceJ = Vec3(lastForce[3 * j], lastForce[3 * j + 1], lastForce[3 * j + 2]);
       in.inverseMassI = inverseMass[i];
       in.inverseMassJ = inverseMass[j];
       in.normalStiffness = constants[3 * k];
       in.normalDamping = constants[3 * k + 1];
       in.tangentialStiffness = constants[3 * k + 2];
       const double dt = 5e-6;
-      Lane3<double> springScalar = { springK[0], springK[1], springK[2] };
-      const TouchingPairResult<double> expected =
+      Vec3 springScalar(springK[0], springK[1], springK[2]);
+      const TouchingPairResult<Vec3> expected =
         touchingPairForce(in, hertz, 0.3, dt, 0.5 * dt, springScalar);
 
       // The kernel on lists of 1 to 4 copies of this pair's slot in fresh output arrays:
@@ -205,14 +205,10 @@ TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
         // The same pair in every listed lane: the results are stored once per lane, equal.
         const std::vector<std::uint32_t> list(listLength, static_cast<std::uint32_t>(k));
         touchingPairsAvx2(arrays, list.data(), list.size());
-        const double want[] = { springScalar.x, springScalar.y, springScalar.z };
-        const double wantF[] = { expected.force.x, expected.force.y, expected.force.z };
-        const double wantTI[] = { expected.torqueI.x, expected.torqueI.y, expected.torqueI.z };
-        const double wantTJ[] = { expected.torqueJ.x, expected.torqueJ.y, expected.torqueJ.z };
-        EXPECT_EQ(std::memcmp(&springOut[3 * k], want, sizeof want), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&force[3 * k], wantF, sizeof wantF), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&torqueI[3 * k], wantTI, sizeof wantTI), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&torqueJ[3 * k], wantTJ, sizeof wantTJ), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&springOut[3 * k], springScalar.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&force[3 * k], expected.force.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&torqueI[3 * k], expected.torqueI.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&torqueJ[3 * k], expected.torqueJ.data(), 3 * sizeof(double)), 0) << "pair " << k;
         EXPECT_EQ(std::memcmp(&normal[k], &expected.normalForce, sizeof(double)), 0) << "pair " << k;
         EXPECT_EQ(live[k], 1);
         EXPECT_EQ(touching[i] == 1 && touching[j] == 1, expected.normalForce != 0.0) << "pair " << k;

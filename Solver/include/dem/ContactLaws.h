@@ -86,8 +86,18 @@ Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double
                    double normalForceMagnitude, const Vec3& n, const Vec3& rollIncrement,
                    Vec3& spring);
 
-/// The components of an Eigen vector as a dem::Lane3<double> (dem/ContactLawLanes.h).
-inline Lane3<double> toLanes(const Vec3& v) { return { v.x(), v.y(), v.z() }; }
+/// Eigen's Vector3d as the vector type of the laws in dem/ContactLawLanes.h (the CPU
+/// backend's scalar loop and the wall contacts run them on it).
+template <> struct VecOps<Vec3> {
+  using Scalar = double;
+  static double dot(const Vec3& a, const Vec3& b) { return a.dot(b); }
+  static double squaredNorm(const Vec3& a) { return a.squaredNorm(); }
+  static Vec3 cross(const Vec3& a, const Vec3& b) { return a.cross(b); }
+  static Vec3 scaled(double s, const Vec3& v) { return s * v; }
+  static Vec3 divided(const Vec3& v, double s) { return v / s; }
+  static Vec3 select(bool m, const Vec3& a, const Vec3& b) { return m ? a : b; }
+  static Vec3 zero() { return Vec3::Zero(); }
+};
 
 /// Removes the component of `v` along the unit normal `n` (projection onto the plane).
 inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
@@ -156,8 +166,7 @@ inline NormalResponse normalResponse(ContactLaw law, const ContactConstants& c, 
 /// normal to `n`, keeping its length: history follows the rotating contact plane.
 inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 {
-  const Lane3<double> r = rotateIntoPlaneLanes(toLanes(v), toLanes(n));
-  return Vec3(r.x, r.y, r.z);
+  return rotateIntoPlaneLanes(v, n); // written once, in dem/ContactLawLanes.h
 }
 
 /// Incremental tangential spring (Mindlin / Coulomb) with a known stiffness kt (N/m) and
@@ -167,11 +176,7 @@ inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 inline Vec3 mindlinCoulombForce(double kt, double friction, double normalForceMagnitude,
                                 const Vec3& n, const Vec3& slipIncrement, Vec3& spring)
 {
-  Lane3<double> s = toLanes(spring);
-  const Lane3<double> f =
-    mindlinCoulombForceLanes(kt, friction, normalForceMagnitude, toLanes(n), toLanes(slipIncrement), s);
-  spring = Vec3(s.x, s.y, s.z);
-  return Vec3(f.x, f.y, f.z);
+  return mindlinCoulombForceLanes(kt, friction, normalForceMagnitude, n, slipIncrement, spring);
 }
 
 /// Cundall local damping of one degree of freedom (PHYSICS.md s.1): F - alpha |F| sign(v),

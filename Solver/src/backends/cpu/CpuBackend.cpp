@@ -56,13 +56,7 @@ private:
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
 
-/// A pair whose squared distance d2 exceeds kApart * (r_i + r_j)^2, each product rounded,
-/// does not touch, and the pair loop would have found that from the square root too:
-/// with s = r_i + r_j (a double) and u = 2^-53, the two roundings leave the right-hand
-/// side above (1 + 2^-50)(1 - u)^2 s^2 > s^2, so sqrt(d2) > s exactly, its correctly
-/// rounded value is >= s, and the overlap s - distance is <= 0. Pairs between the bounds
-/// take the square root as before, so the rejection changes no bit.
-constexpr double kApart = 1.0 + 0x1p-50;
+// kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
 /// stack) and evaluates them at the block's end, while its arrays are still in cache.
@@ -512,11 +506,12 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   double* const pairNormal = im.pairNormal.data();
   std::uint8_t* const pairLive = im.pairLive.data();
   std::uint8_t* const touching = im.touching.data();
-  // Touching pairs: with AVX2 (and no rolling resistance, no periodic axis), each block's
-  // touching pairs are listed by the scan below and evaluated four at a time; otherwise
-  // each one where the scan finds it. Both run dem::touchingPairForce with the same bits.
+  // In blocks of kPairBlock pairs. With AVX2 (and no rolling resistance, no periodic axis)
+  // a block's pairs are tested four at a time and its touching pairs evaluated four at a
+  // time; otherwise one by one. Both run the same test and dem::touchingPairForce, with
+  // the same bits.
   const bool hertz = cm.law == ContactLaw::HertzMindlin;
-  const bool simd = simd_ && !rolling && separationOf.plain();
+  [[maybe_unused]] const bool simd = simd_ && !rolling && separationOf.plain();
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(ContactConstants) == 3 * sizeof(double),
                 "the AVX2 kernel reads these arrays as plain doubles");
   auto doubles = [](auto* array) {
@@ -524,16 +519,46 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
                                       const double, double>;
     return reinterpret_cast<Double*>(array);
   };
-  const TouchingPairArrays arrays{ doubles(position), doubles(velocity), doubles(spin),
+  [[maybe_unused]] const TouchingPairArrays arrays{ doubles(position), doubles(velocity), doubles(spin),
     doubles(lastForce), radius, inverseMass, pairI, pairJ, doubles(pairConstants),
     doubles(pairSpring), doubles(pairForce), doubles(pairTorqueI), doubles(pairTorqueJ),
     pairNormal, pairLive, touching, hertz, cm.friction, dt, predict };
+  // A pair that does not touch (any longer): clear its force and history once, where it
+  // may hold some (pairLive 1); a pair without state has nothing to clear: one byte read
+  // instead of its normal force and springs. (Captured by value: a reference to the
+  // pointers would make the parallel loops read every array's address through memory.)
+  auto endContact = [=](std::size_t k) {
+    if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
+        (rolling && !pairRolling[k].isZero(0.0))) {
+      pairForce[k].setZero();
+      pairTorqueI[k].setZero();
+      pairTorqueJ[k].setZero();
+      pairNormal[k] = 0.0;
+      pairSpring[k].setZero();
+      if (rolling) {
+        pairRolling[k].setZero();
+      }
+    }
+    pairLive[k] = 0;
+  };
   const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
   for (long b = 0; b < blocks; ++b) {
-    std::uint32_t list[kPairBlock]; // the block's touching pairs (AVX2 only)
-    std::size_t listed = 0;
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
+#if ROCKDEM_AVX2_KERNEL
+    if (simd) {
+      // The block's pairs tested four at a time; those that touch evaluated four at a time.
+      std::uint32_t list[kPairBlock], ended[kPairBlock];
+      std::size_t endedCount = 0;
+      const std::size_t listed = scanPairsAvx2(arrays, static_cast<std::size_t>(b * kPairBlock),
+                                               static_cast<std::size_t>(blockEnd), list, ended, endedCount);
+      for (std::size_t e = 0; e < endedCount; ++e) {
+        endContact(ended[e]);
+      }
+      touchingPairsAvx2(arrays, list, listed);
+      continue;
+    }
+#endif
     for (long k = b * kPairBlock; k < blockEnd; ++k) {
       const std::uint32_t i = pairI[k];
       const std::uint32_t j = pairJ[k];
@@ -547,55 +572,35 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
       const double distance = apart ? 0.0 : std::sqrt(distance2); // = branch.norm()
       const double overlap = reach - distance;
       if (apart || overlap <= 0.0 || distance == 0.0) {
-        // A pair without state (pairLive 0) has nothing to clear: one byte read instead
-        // of its normal force and springs.
         if (pairLive[k]) {
-          if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
-              (rolling && !pairRolling[k].isZero(0.0))) {
-            // The contact just ended: clear its force and history (once, not every step).
-            pairForce[k].setZero();
-            pairTorqueI[k].setZero();
-            pairTorqueJ[k].setZero();
-            pairNormal[k] = 0.0;
-            pairSpring[k].setZero();
-            if (rolling) {
-              pairRolling[k].setZero();
-            }
-          }
-          pairLive[k] = 0;
+          endContact(static_cast<std::size_t>(k));
         }
         continue;
       }
-      if (simd) {
-        list[listed++] = static_cast<std::uint32_t>(k);
-        continue;
-      }
-      TouchingPairInput<double> in;
-      in.branch = toLanes(branch);
+      TouchingPairInput<Vec3> in;
+      in.branch = branch;
       in.distance = distance;
       in.overlap = overlap;
       in.radiusI = radius[i];
       in.radiusJ = radius[j];
-      in.velocityI = toLanes(velocity[i]);
-      in.velocityJ = toLanes(velocity[j]);
-      in.spinI = toLanes(spin[i]);
-      in.spinJ = toLanes(spin[j]);
-      in.lastForceI = toLanes(lastForce[i]);
-      in.lastForceJ = toLanes(lastForce[j]);
+      in.velocityI = velocity[i];
+      in.velocityJ = velocity[j];
+      in.spinI = spin[i];
+      in.spinJ = spin[j];
+      in.lastForceI = lastForce[i];
+      in.lastForceJ = lastForce[j];
       in.inverseMassI = inverseMass[i];
       in.inverseMassJ = inverseMass[j];
       in.normalStiffness = pairConstants[k].normalStiffness;
       in.normalDamping = pairConstants[k].normalDamping;
       in.tangentialStiffness = pairConstants[k].tangentialStiffness;
-      Lane3<double> spring = toLanes(pairSpring[k]);
-      const TouchingPairResult<double> r =
-        touchingPairForce(in, hertz, cm.friction, dt, predict, spring);
-      pairSpring[k] = Vec3(spring.x, spring.y, spring.z);
+      const TouchingPairResult<Vec3> r =
+        touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
       const double fn = r.normalForce;
-      Vec3 torqueI(r.torqueI.x, r.torqueI.y, r.torqueI.z);
-      Vec3 torqueJ(r.torqueJ.x, r.torqueJ.y, r.torqueJ.z);
+      Vec3 torqueI = r.torqueI;
+      Vec3 torqueJ = r.torqueJ;
       if (rolling) {
-        const Vec3 normal(r.normal.x, r.normal.y, r.normal.z);
+        const Vec3& normal = r.normal;
         const PairProperties pair =
           pairProperties(cm, radius[i], massOf(i), radius[j], massOf(j), planar, slab);
         const Vec3 roll = inPlane(spin[i] - spin[j], normal) * dt;
@@ -603,7 +608,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         torqueI += mr;
         torqueJ -= mr;
       }
-      pairForce[k] = Vec3(r.force.x, r.force.y, r.force.z);
+      pairForce[k] = r.force;
       pairTorqueI[k] = torqueI;
       pairTorqueJ[k] = torqueJ;
       pairNormal[k] = fn;
@@ -616,11 +621,6 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         touching[j] = 1;
       }
     }
-#if ROCKDEM_AVX2_KERNEL
-    if (listed > 0) {
-      touchingPairsAvx2(arrays, list, listed);
-    }
-#endif
   }
 
   // 2. Bonds, each once (state updated and failure checked only on a real step).

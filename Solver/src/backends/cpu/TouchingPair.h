@@ -1,9 +1,9 @@
-// RockDEM engine: the force of one touching particle pair, written once for a lane type S
-// (dem/ContactLawLanes.h): the CPU backend's scalar pair loop runs it with S = double, its
-// AVX2 kernel (TouchingPairsAvx2.cpp) on four pairs at once with the same operations in the
-// same order, so both give the same bits (and the GLSL twin, shaders/pair_forces.comp,
-// the same again). No Eigen here: the AVX2 translation unit includes this header.
-// SI units.
+// RockDEM engine: the force of one touching particle pair, written once for a vector type
+// V (dem/ContactLawLanes.h): the CPU backend's scalar pair loop runs it on Eigen's Vector3d,
+// its AVX2 kernel (TouchingPairsAvx2.cpp) on dem::Lane3 of four doubles per lane (four
+// pairs at once) with the same operations in the same order, so both give the same bits
+// (and the Vulkan backend's GLSL twin the same again). No Eigen here: the AVX2 translation
+// unit includes this header. SI units.
 #pragma once
 
 #include "dem/ContactLawLanes.h"
@@ -21,15 +21,16 @@
 
 namespace dem {
 
-/// What the pair law reads of one pair (i < j), per lane.
-template <class S> struct TouchingPairInput {
-  Lane3<S> branch;   ///< m, from i to j (minimum image)
+/// What the pair law reads of one pair (i < j), per lane; V is the vector type
+/// (dem/ContactLawLanes.h), S its lane type.
+template <class V, class S = typename VecOps<V>::Scalar> struct TouchingPairInput {
+  V branch;          ///< m, from i to j (minimum image)
   S distance;        ///< m, |branch| > 0
   S overlap;         ///< m, r_i + r_j - distance > 0
   S radiusI, radiusJ;
-  Lane3<S> velocityI, velocityJ; ///< m/s, half-step velocities
-  Lane3<S> spinI, spinJ;         ///< rad/s
-  Lane3<S> lastForceI, lastForceJ; ///< N, the forces of the last step
+  V velocityI, velocityJ;   ///< m/s, half-step velocities
+  V spinI, spinJ;           ///< rad/s
+  V lastForceI, lastForceJ; ///< N, the forces of the last step
   S inverseMassI, inverseMassJ;  ///< 1/kg
   S normalStiffness, normalDamping, tangentialStiffness; ///< dem::ContactConstants
 };
@@ -37,46 +38,46 @@ template <class S> struct TouchingPairInput {
 /// What it gives: the normal (unit, from i to j), the normal force magnitude, and the
 /// force on i (j gets the opposite) with the torques about both centres. The spring (m)
 /// is updated in place.
-template <class S> struct TouchingPairResult {
-  Lane3<S> normal;
+template <class V, class S = typename VecOps<V>::Scalar> struct TouchingPairResult {
+  V normal;
   S normalForce;
-  Lane3<S> force;
-  Lane3<S> torqueI, torqueJ;
+  V force;
+  V torqueI, torqueJ;
 };
 
 /// The pair law of a touching pair: relative velocity at the contact point, the normal
 /// response of `hertz` (else linear) with the velocity predicted to the full step for its
 /// damping, the Mindlin-Coulomb spring with the half-step slip over `dt`, the torques.
 /// `predict` (s) is half the step (0 outside a real step, as `dt`).
-template <class S>
-ROCKDEM_INLINE_LAW TouchingPairResult<S> touchingPairForce(const TouchingPairInput<S>& in, bool hertz,
-                                               const S& friction, const S& dt, const S& predict,
-                                               Lane3<S>& spring)
+template <class V, class S = typename VecOps<V>::Scalar>
+ROCKDEM_INLINE_LAW TouchingPairResult<V> touchingPairForce(const TouchingPairInput<V>& in, bool hertz,
+                                                           const S& friction, const S& dt,
+                                                           const S& predict, V& spring)
 {
-  const Lane3<S> normal = divided(in.branch, in.distance);
+  using O = VecOps<V>;
+  const V normal = O::divided(in.branch, in.distance);
   const S armI = in.radiusI - 0.5 * in.overlap; // m, centre to contact point
   const S armJ = in.radiusJ - 0.5 * in.overlap;
   // Slip over the step uses the half-step velocities (exact for the displacement
   // increment); the viscous damping uses the full-step velocities, predicted from the
   // last forces, so that restitution does not drift with the number of steps per impact.
-  const Lane3<S> relativeVelocity = in.velocityI - in.velocityJ +
-    cross(in.spinI, scaled(armI, normal)) + cross(in.spinJ, scaled(armJ, normal));
-  const Lane3<S> predictedVelocity = relativeVelocity +
-    scaled(predict, scaled(in.inverseMassI, in.lastForceI) - scaled(in.inverseMassJ, in.lastForceJ));
-  const S approachSpeed = dot(predictedVelocity, normal);
+  const V relativeVelocity = in.velocityI - in.velocityJ +
+    O::cross(in.spinI, O::scaled(armI, normal)) + O::cross(in.spinJ, O::scaled(armJ, normal));
+  const V predictedVelocity = relativeVelocity +
+    O::scaled(predict, O::scaled(in.inverseMassI, in.lastForceI) - O::scaled(in.inverseMassJ, in.lastForceJ));
+  const S approachSpeed = O::dot(predictedVelocity, normal);
   const NormalResponseLanes<S> response = hertz
     ? hertzMindlinResponseLanes(in.normalStiffness, in.normalDamping, in.tangentialStiffness,
                                 in.overlap, approachSpeed)
     : linearResponseLanes(in.normalStiffness, in.normalDamping, in.tangentialStiffness,
                           in.overlap, approachSpeed);
   const S fn = response.force;
-  const Lane3<S> slip = scaled(dt, inPlaneLanes(relativeVelocity, normal));
-  const Lane3<S> ft =
-    mindlinCoulombForceLanes(response.tangentialStiffness, friction, fn, normal, slip, spring);
-  const Lane3<S> normalCrossFt = cross(normal, ft);
+  const V slip = O::scaled(dt, inPlaneLanes(relativeVelocity, normal));
+  const V ft = mindlinCoulombForceLanes(response.tangentialStiffness, friction, fn, normal, slip, spring);
+  const V normalCrossFt = O::cross(normal, ft);
   const S minusFn = -fn;
-  return { normal, fn, scaled(minusFn, normal) + ft, scaled(armI, normalCrossFt),
-           scaled(armJ, normalCrossFt) };
+  return { normal, fn, O::scaled(minusFn, normal) + ft, O::scaled(armI, normalCrossFt),
+           O::scaled(armJ, normalCrossFt) };
 }
 
 /// The pair arrays of the CPU backend as plain doubles (a Vec3 is three doubles), for the
@@ -104,9 +105,24 @@ struct TouchingPairArrays {
   double predict;
 };
 
+/// A pair whose squared distance d2 exceeds kApart * (r_i + r_j)^2, each product rounded,
+/// does not touch, and the square root would have said so too: with s = r_i + r_j (a
+/// double) and u = 2^-53, the two roundings leave the right-hand side above
+/// (1 + 2^-50)(1 - u)^2 s^2 > s^2, so sqrt(d2) > s exactly, its correctly rounded value is
+/// >= s, and the overlap s - distance is <= 0. Pairs between the bounds take the square
+/// root, so the rejection changes no bit.
+constexpr double kApart = 1.0 + 0x1p-50;
+
 /// True when this CPU runs the AVX2 kernel and ROCKDEM_CPU_SIMD is not 0 (the variable
 /// forces the scalar pair loop, for tests and comparisons). Decided once per process.
 bool touchingPairsAvx2Enabled();
+
+/// The pair loop's test of pairs [first, last) (at most kPairBlock of them), four at a time
+/// with AVX2, as the scalar loop tests them: appends the pairs that touch to `list` (their
+/// count returned) and those that do not touch but may hold state (live) to `ended`
+/// (`endedCount`), which the caller clears. Plain differences of positions only.
+std::size_t scanPairsAvx2(const TouchingPairArrays& arrays, std::size_t first, std::size_t last,
+                          std::uint32_t* list, std::uint32_t* ended, std::size_t& endedCount);
 
 /// Evaluates the touching pairs `list[0..count)` (pair indices; each pair touches: distance
 /// > 0 and overlap > 0, plain differences of positions, no rolling resistance) four at a

@@ -15,6 +15,8 @@
 
 #include <immintrin.h>
 
+#include <cstring>
+
 namespace dem {
 namespace {
 
@@ -30,6 +32,7 @@ template <> struct LaneOps<F64x4> {
   static F64x4 select(Mask m, F64x4 a, F64x4 b) { return m ? a : b; }
   static Mask both(Mask a, Mask b) { return a & b; }
   static bool any(Mask m) { return _mm256_movemask_pd((__m256d)m) != 0; }
+  static bool all(Mask m) { return _mm256_movemask_pd((__m256d)m) == 0xf; }
 };
 
 namespace {
@@ -95,6 +98,64 @@ inline void scatter3(double* a, const std::uint32_t* idx, const V3& v, int lanes
 
 } // namespace
 
+std::size_t scanPairsAvx2(const TouchingPairArrays& a, std::size_t first, std::size_t last,
+                          std::uint32_t* list, std::uint32_t* ended, std::size_t& endedCount)
+{
+  // The scalar loop's test, lane by lane: d2 > kApart (r_i + r_j)^2 (apart), else the
+  // distance sqrt(d2) and the overlap r_i + r_j - distance; a pair touches unless it is
+  // apart, its overlap is <= 0 or its distance is 0 (a NaN distance touches, as there).
+  const F64x4 apartFactor = Ops::broadcast(kApart);
+  std::size_t listed = 0;
+  endedCount = 0;
+  for (std::size_t k = first; k < last; k += 4) {
+    const int lanes = last - k >= 4 ? 4 : static_cast<int>(last - k);
+    const std::uint32_t* i = a.pairI + k;
+    const std::uint32_t* j = a.pairJ + k;
+    std::uint32_t padI[4], padJ[4];
+    if (lanes < 4) { // the last pair repeated in the unused lanes (their results unused)
+      for (int l = 0; l < 4; ++l) {
+        padI[l] = i[l < lanes ? l : lanes - 1];
+        padJ[l] = j[l < lanes ? l : lanes - 1];
+      }
+      i = padI;
+      j = padJ;
+    }
+    const V3 branch = gather3(a.position, j) - gather3(a.position, i);
+    const F64x4 reach = gather1(a.radius, i) + gather1(a.radius, j);
+    const F64x4 distance2 = VecOps<V3>::squaredNorm(branch);
+    const I64x4 apart = distance2 > apartFactor * (reach * reach);
+    I64x4 notTouching = apart;
+    if (!Ops::all(apart)) {
+      const F64x4 distance = Ops::sqrt(distance2);
+      const F64x4 overlap = reach - distance;
+      notTouching = apart | (overlap <= 0.0) | (distance == 0.0);
+    }
+    const int apartBits = _mm256_movemask_pd((__m256d)notTouching);
+    if (lanes == 4) { // the common cases: four that touch, or four apart without state
+      if (apartBits == 0) {
+        for (int l = 0; l < 4; ++l) {
+          list[listed++] = static_cast<std::uint32_t>(k) + static_cast<std::uint32_t>(l);
+        }
+        continue;
+      }
+      std::uint32_t live4;
+      std::memcpy(&live4, a.live + k, 4);
+      if (apartBits == 0xf && live4 == 0) {
+        continue;
+      }
+    }
+    for (int l = 0; l < lanes; ++l) {
+      const std::uint32_t pair = static_cast<std::uint32_t>(k) + static_cast<std::uint32_t>(l);
+      if (!(apartBits & (1 << l))) {
+        list[listed++] = pair;
+      } else if (a.live[pair]) {
+        ended[endedCount++] = pair;
+      }
+    }
+  }
+  return listed;
+}
+
 void touchingPairsAvx2(const TouchingPairArrays& a, const std::uint32_t* list, std::size_t count)
 {
   const F64x4 friction = Ops::broadcast(a.friction);
@@ -110,14 +171,14 @@ void touchingPairsAvx2(const TouchingPairArrays& a, const std::uint32_t* list, s
       i[l] = a.pairI[k[l]];
       j[l] = a.pairJ[k[l]];
     }
-    TouchingPairInput<F64x4> in;
+    TouchingPairInput<V3> in;
     const V3 positionI = gather3(a.position, i);
     const V3 positionJ = gather3(a.position, j);
     in.branch = positionJ - positionI; // plain differences (the caller checks the domain)
     in.radiusI = gather1(a.radius, i);
     in.radiusJ = gather1(a.radius, j);
     const F64x4 reach = in.radiusI + in.radiusJ;
-    in.distance = Ops::sqrt(squaredNorm(in.branch));
+    in.distance = Ops::sqrt(VecOps<V3>::squaredNorm(in.branch));
     in.overlap = reach - in.distance;
     in.velocityI = gather3(a.velocity, i);
     in.velocityJ = gather3(a.velocity, j);
@@ -132,7 +193,7 @@ void touchingPairsAvx2(const TouchingPairArrays& a, const std::uint32_t* list, s
     in.normalDamping = constants.y;
     in.tangentialStiffness = constants.z;
     V3 spring = gather3(a.spring, k);
-    const TouchingPairResult<F64x4> r = touchingPairForce(in, a.hertz, friction, dt, predict, spring);
+    const TouchingPairResult<V3> r = touchingPairForce(in, a.hertz, friction, dt, predict, spring);
     scatter3(a.spring, k, spring, lanes);
     scatter3(a.force, k, r.force, lanes);
     scatter3(a.torqueI, k, r.torqueI, lanes);
