@@ -114,7 +114,8 @@ struct TouchingPairArrays {
 constexpr double kApart = 1.0 + 0x1p-50;
 
 /// True when this CPU runs the AVX2 kernel and ROCKDEM_CPU_SIMD is not 0 (the variable
-/// forces the scalar pair loop, for tests and comparisons). Decided once per process.
+/// forces the scalar pair loop, for tests and comparisons). The processor is asked once per
+/// process, the variable at every call (the CPU backend calls it when it is made).
 bool touchingPairsAvx2Enabled();
 
 /// The pair loop's test of pairs [first, last) (at most kPairBlock of them), four at a time
