@@ -168,24 +168,19 @@ TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
         }
       }
       // Scalar reference: the scalar loop's instance (Eigen vectors).
-      TouchingPairInput<Vec3> in;
-      in.branch = Vec3(pos[3 * j] - pos[3 * i], pos[3 * j + 1] - pos[3 * i + 1], pos[3 * j + 2] - pos[3 * i + 2]);
-      in.distance = std::sqrt(in.branch.squaredNorm());
-      in.overlap = (radius[i] + radius[j]) - in.distance;
-      ASSERT_GT(in.overlap, 0.0);
-      in.radiusI = radius[i];
-      in.radiusJ = radius[j];
-      in.velocityI = Vec3(velocity[3 * i], velocity[3 * i + 1], velocity[3 * i + 2]);
-      in.velocityJ = Vec3(velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2]);
-      in.spinI = Vec3(spin[3 * i], spin[3 * i + 1], spin[3 * i + 2]);
-      in.spinJ = Vec3(spin[3 * j], spin[3 * j + 1], spin[3 * j + 2]);
-      in.lastForceI = Vec3(lastForce[3 * i], lastForce[3 * i + 1], lastForce[3 * i + 2]);
-      in.lastForceJ = Vec3(lastForce[3 * j], lastForce[3 * j + 1], lastForce[3 * j + 2]);
-      in.inverseMassI = inverseMass[i];
-      in.inverseMassJ = inverseMass[j];
-      in.normalStiffness = constants[3 * k];
-      in.normalDamping = constants[3 * k + 1];
-      in.tangentialStiffness = constants[3 * k + 2];
+      const Vec3 branch(pos[3 * j] - pos[3 * i], pos[3 * j + 1] - pos[3 * i + 1], pos[3 * j + 2] - pos[3 * i + 2]);
+      const double separation = std::sqrt(branch.squaredNorm());
+      const double depth = (radius[i] + radius[j]) - separation;
+      ASSERT_GT(depth, 0.0);
+      const Vec3 velocityI(velocity[3 * i], velocity[3 * i + 1], velocity[3 * i + 2]);
+      const Vec3 velocityJ(velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2]);
+      const Vec3 spinI(spin[3 * i], spin[3 * i + 1], spin[3 * i + 2]);
+      const Vec3 spinJ(spin[3 * j], spin[3 * j + 1], spin[3 * j + 2]);
+      const Vec3 lastForceI(lastForce[3 * i], lastForce[3 * i + 1], lastForce[3 * i + 2]);
+      const Vec3 lastForceJ(lastForce[3 * j], lastForce[3 * j + 1], lastForce[3 * j + 2]);
+      const TouchingPairInput<Vec3> in{ branch, separation, depth, radius[i], radius[j],
+        velocityI, velocityJ, spinI, spinJ, lastForceI, lastForceJ, inverseMass[i], inverseMass[j],
+        constants[3 * k], constants[3 * k + 1], constants[3 * k + 2] };
       const double dt = 5e-6;
       Vec3 springScalar(springK[0], springK[1], springK[2]);
       const TouchingPairResult<Vec3> expected =

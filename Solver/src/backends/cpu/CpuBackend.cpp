@@ -577,23 +577,10 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         }
         continue;
       }
-      TouchingPairInput<Vec3> in;
-      in.branch = branch;
-      in.distance = distance;
-      in.overlap = overlap;
-      in.radiusI = radius[i];
-      in.radiusJ = radius[j];
-      in.velocityI = velocity[i];
-      in.velocityJ = velocity[j];
-      in.spinI = spin[i];
-      in.spinJ = spin[j];
-      in.lastForceI = lastForce[i];
-      in.lastForceJ = lastForce[j];
-      in.inverseMassI = inverseMass[i];
-      in.inverseMassJ = inverseMass[j];
-      in.normalStiffness = pairConstants[k].normalStiffness;
-      in.normalDamping = pairConstants[k].normalDamping;
-      in.tangentialStiffness = pairConstants[k].tangentialStiffness;
+      const ContactConstants& c = pairConstants[k];
+      const TouchingPairInput<Vec3> in{ branch, distance, overlap, radius[i], radius[j],
+        velocity[i], velocity[j], spin[i], spin[j], lastForce[i], lastForce[j],
+        inverseMass[i], inverseMass[j], c.normalStiffness, c.normalDamping, c.tangentialStiffness };
       const TouchingPairResult<Vec3> r =
         touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
       const double fn = r.normalForce;

@@ -171,27 +171,23 @@ void touchingPairsAvx2(const TouchingPairArrays& a, const std::uint32_t* list, s
       i[l] = a.pairI[k[l]];
       j[l] = a.pairJ[k[l]];
     }
-    TouchingPairInput<V3> in;
     const V3 positionI = gather3(a.position, i);
     const V3 positionJ = gather3(a.position, j);
-    in.branch = positionJ - positionI; // plain differences (the caller checks the domain)
-    in.radiusI = gather1(a.radius, i);
-    in.radiusJ = gather1(a.radius, j);
-    const F64x4 reach = in.radiusI + in.radiusJ;
-    in.distance = Ops::sqrt(VecOps<V3>::squaredNorm(in.branch));
-    in.overlap = reach - in.distance;
-    in.velocityI = gather3(a.velocity, i);
-    in.velocityJ = gather3(a.velocity, j);
-    in.spinI = gather3(a.spin, i);
-    in.spinJ = gather3(a.spin, j);
-    in.lastForceI = gather3(a.lastForce, i);
-    in.lastForceJ = gather3(a.lastForce, j);
-    in.inverseMassI = gather1(a.inverseMass, i);
-    in.inverseMassJ = gather1(a.inverseMass, j);
+    const V3 branch = positionJ - positionI; // plain differences (the caller checks the domain)
+    const F64x4 radiusI = gather1(a.radius, i);
+    const F64x4 radiusJ = gather1(a.radius, j);
+    const F64x4 distance = Ops::sqrt(VecOps<V3>::squaredNorm(branch));
+    const F64x4 overlap = (radiusI + radiusJ) - distance;
+    const V3 velocityI = gather3(a.velocity, i);
+    const V3 velocityJ = gather3(a.velocity, j);
+    const V3 spinI = gather3(a.spin, i);
+    const V3 spinJ = gather3(a.spin, j);
+    const V3 lastForceI = gather3(a.lastForce, i);
+    const V3 lastForceJ = gather3(a.lastForce, j);
     const V3 constants = gather3(a.constants, k);
-    in.normalStiffness = constants.x;
-    in.normalDamping = constants.y;
-    in.tangentialStiffness = constants.z;
+    const TouchingPairInput<V3> in{ branch, distance, overlap, radiusI, radiusJ, velocityI,
+      velocityJ, spinI, spinJ, lastForceI, lastForceJ, gather1(a.inverseMass, i),
+      gather1(a.inverseMass, j), constants.x, constants.y, constants.z };
     V3 spring = gather3(a.spring, k);
     const TouchingPairResult<V3> r = touchingPairForce(in, a.hertz, friction, dt, predict, spring);
     scatter3(a.spring, k, spring, lanes);
