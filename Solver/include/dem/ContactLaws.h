@@ -12,6 +12,7 @@
 #pragma once
 
 #include "dem/ContactLawKind.h"
+#include "dem/ContactLawLanes.h"
 #include "dem/Model.h"
 
 #include <cmath>
@@ -85,6 +86,19 @@ Vec3 rollingTorque(const ContactModel& model, const PairProperties& pair, double
                    double normalForceMagnitude, const Vec3& n, const Vec3& rollIncrement,
                    Vec3& spring);
 
+/// Eigen's Vector3d as the vector type of the laws in dem/ContactLawLanes.h (the CPU
+/// backend's scalar loop and the wall contacts run them on it).
+template <> struct VecOps<Vec3> {
+  using Scalar = double;
+  static double dot(const Vec3& a, const Vec3& b) { return a.dot(b); }
+  static double squaredNorm(const Vec3& a) { return a.squaredNorm(); }
+  static Vec3 cross(const Vec3& a, const Vec3& b) { return a.cross(b); }
+  static Vec3 scaled(double s, const Vec3& v) { return s * v; }
+  static Vec3 divided(const Vec3& v, double s) { return v / s; }
+  static Vec3 select(bool m, const Vec3& a, const Vec3& b) { return m ? a : b; }
+  static Vec3 zero() { return Vec3::Zero(); }
+};
+
 /// Removes the component of `v` along the unit normal `n` (projection onto the plane).
 inline Vec3 inPlane(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
 
@@ -125,21 +139,19 @@ struct NormalResponse {
 inline NormalResponse hertzMindlinResponse(const ContactConstants& c, double overlap,
                                            double approachSpeed)
 {
-  const double root = std::sqrt(overlap);          // m^(1/2)
-  const double elastic = c.normalStiffness * overlap * root;
-  const double viscous = c.normalDamping * std::sqrt(root) * approachSpeed;
-  const double force = elastic + viscous;
-  return { elastic, force > 0.0 ? force : 0.0, 1.5 * c.normalStiffness * root,
-           c.tangentialStiffness * root };
+  // Written once, in dem/ContactLawLanes.h (the CPU backend's SIMD pair kernel runs it too).
+  const NormalResponseLanes<double> r = hertzMindlinResponseLanes(
+    c.normalStiffness, c.normalDamping, c.tangentialStiffness, overlap, approachSpeed);
+  return { r.elasticForce, r.force, r.stiffness, r.tangentialStiffness };
 }
 
 /// Linear spring-dashpot normal response: F = kn delta + 2 zeta sqrt(m* kn) d(delta)/dt,
 /// cut off at zero; constant stiffnesses.
 inline NormalResponse linearResponse(const ContactConstants& c, double overlap, double approachSpeed)
 {
-  const double elastic = c.normalStiffness * overlap;
-  const double force = elastic + c.normalDamping * approachSpeed;
-  return { elastic, force > 0.0 ? force : 0.0, c.normalStiffness, c.tangentialStiffness };
+  const NormalResponseLanes<double> r = linearResponseLanes(
+    c.normalStiffness, c.normalDamping, c.tangentialStiffness, overlap, approachSpeed);
+  return { r.elasticForce, r.force, r.stiffness, r.tangentialStiffness };
 }
 
 /// The normal response of the model's law (overlap > 0).
@@ -154,13 +166,7 @@ inline NormalResponse normalResponse(ContactLaw law, const ContactConstants& c, 
 /// normal to `n`, keeping its length: history follows the rotating contact plane.
 inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 {
-  const double length2 = v.squaredNorm();
-  if (length2 == 0.0) {
-    return Vec3::Zero();
-  }
-  const Vec3 projected = inPlane(v, n);
-  const double projected2 = projected.squaredNorm();
-  return projected2 > 0.0 ? Vec3(projected * std::sqrt(length2 / projected2)) : Vec3(Vec3::Zero());
+  return rotateIntoPlaneLanes(v, n); // written once, in dem/ContactLawLanes.h
 }
 
 /// Incremental tangential spring (Mindlin / Coulomb) with a known stiffness kt (N/m) and
@@ -170,15 +176,7 @@ inline Vec3 rotateIntoPlane(const Vec3& v, const Vec3& n)
 inline Vec3 mindlinCoulombForce(double kt, double friction, double normalForceMagnitude,
                                 const Vec3& n, const Vec3& slipIncrement, Vec3& spring)
 {
-  spring = rotateIntoPlane(spring, n) + slipIncrement;
-  const double limit = friction * normalForceMagnitude; // N, Coulomb: |Ft| <= mu Fn
-  const double trial2 = kt * kt * spring.squaredNorm();  // N^2
-  if (trial2 > limit * limit) {
-    // Gross sliding: keep the spring at the length that carries exactly mu Fn.
-    const double trial = std::sqrt(trial2);
-    spring *= (kt > 0.0 && trial > 0.0) ? limit / trial : 0.0;
-  }
-  return -kt * spring;
+  return mindlinCoulombForceLanes(kt, friction, normalForceMagnitude, n, slipIncrement, spring);
 }
 
 /// Cundall local damping of one degree of freedom (PHYSICS.md s.1): F - alpha |F| sign(v),

@@ -7,11 +7,15 @@
 #include "dem/Membrane.h"
 #include "dem/SizeClassGrids.h"
 #include "dem/WallControl.h"
+#include "backends/cpu/TouchingPair.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <type_traits>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -42,6 +46,8 @@ public:
   {
     return plain_ ? Vec3(b - a) : minimumImage(domain_, a, b);
   }
+  /// True when the separation is the plain difference b - a.
+  bool plain() const { return plain_; }
 
 private:
   const Domain& domain_;
@@ -50,19 +56,32 @@ private:
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
 
-/// A pair whose squared distance d2 exceeds kApart * (r_i + r_j)^2, each product rounded,
-/// does not touch, and the pair loop would have found that from the square root too:
-/// with s = r_i + r_j (a double) and u = 2^-53, the two roundings leave the right-hand
-/// side above (1 + 2^-50)(1 - u)^2 s^2 > s^2, so sqrt(d2) > s exactly, its correctly
-/// rounded value is >= s, and the overlap s - distance is <= 0. Pairs between the bounds
-/// take the square root as before, so the rejection changes no bit.
-constexpr double kApart = 1.0 + 0x1p-50;
+// kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
+
+/// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
+/// stack) and evaluates them at the block's end, while its arrays are still in cache.
+constexpr long kPairBlock = 256;
 } // namespace
+
+#if ROCKDEM_AVX2_KERNEL
+bool touchingPairsAvx2Enabled()
+{
+  static const bool cpuHasAvx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  const char* setting = std::getenv("ROCKDEM_CPU_SIMD");
+  return cpuHasAvx2 && !(setting != nullptr && std::string(setting) == "0");
+}
+#else
+bool touchingPairsAvx2Enabled() { return false; } // not an x86-64 build: the scalar loop
+#endif
 
 CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double timestep)
   : model_(model)
   , contactModel_(contactModel)
   , timestep_(timestep)
+  , simd_(touchingPairsAvx2Enabled())
 {
   const SolverSettings& s = model.solver;
   ContactState& im = state_;
@@ -487,76 +506,107 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   double* const pairNormal = im.pairNormal.data();
   std::uint8_t* const pairLive = im.pairLive.data();
   std::uint8_t* const touching = im.touching.data();
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long k = 0; k < pairs; ++k) {
-    const std::uint32_t i = pairI[k];
-    const std::uint32_t j = pairJ[k];
-    const Vec3 branch = separationOf(position[i], position[j]); // from i to j
-    const double reach = radius[i] + radius[j];
-    const double distance2 = branch.squaredNorm();
-    // Most neighbour pairs of a settled pack do not touch (88 % at 100k): those far enough
-    // apart are rejected on the squared distance, before the square root (bit for bit:
-    // see kApart). The others take the distance and the overlap as before.
-    const bool apart = distance2 > kApart * (reach * reach);
-    const double distance = apart ? 0.0 : std::sqrt(distance2); // = branch.norm()
-    const double overlap = reach - distance;
-    if (apart || overlap <= 0.0 || distance == 0.0) {
-      // A pair without state (pairLive 0) has nothing to clear: one byte read instead
-      // of its normal force and springs.
-      if (pairLive[k]) {
-        if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
-            (rolling && !pairRolling[k].isZero(0.0))) {
-          // The contact just ended: clear its force and history (once, not every step).
-          pairForce[k].setZero();
-          pairTorqueI[k].setZero();
-          pairTorqueJ[k].setZero();
-          pairNormal[k] = 0.0;
-          pairSpring[k].setZero();
-          if (rolling) {
-            pairRolling[k].setZero();
-          }
-        }
-        pairLive[k] = 0;
+  // In blocks of kPairBlock pairs. With AVX2 (and no rolling resistance, no periodic axis)
+  // a block's pairs are tested four at a time and its touching pairs evaluated four at a
+  // time; otherwise one by one. Both run the same test and dem::touchingPairForce, with
+  // the same bits.
+  const bool hertz = cm.law == ContactLaw::HertzMindlin;
+  [[maybe_unused]] const bool simd = simd_ && !rolling && separationOf.plain();
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(ContactConstants) == 3 * sizeof(double),
+                "the AVX2 kernel reads these arrays as plain doubles");
+  auto doubles = [](auto* array) {
+    using Double = std::conditional_t<std::is_const_v<std::remove_pointer_t<decltype(array)>>,
+                                      const double, double>;
+    return reinterpret_cast<Double*>(array);
+  };
+  [[maybe_unused]] const TouchingPairArrays arrays{ doubles(position), doubles(velocity), doubles(spin),
+    doubles(lastForce), radius, inverseMass, pairI, pairJ, doubles(pairConstants),
+    doubles(pairSpring), doubles(pairForce), doubles(pairTorqueI), doubles(pairTorqueJ),
+    pairNormal, pairLive, touching, hertz, cm.friction, dt, predict };
+  // A pair that does not touch (any longer): clear its force and history once, where it
+  // may hold some (pairLive 1); a pair without state has nothing to clear: one byte read
+  // instead of its normal force and springs. (Captured by value: a reference to the
+  // pointers would make the parallel loops read every array's address through memory.)
+  auto endContact = [=](std::size_t k) {
+    if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
+        (rolling && !pairRolling[k].isZero(0.0))) {
+      pairForce[k].setZero();
+      pairTorqueI[k].setZero();
+      pairTorqueJ[k].setZero();
+      pairNormal[k] = 0.0;
+      pairSpring[k].setZero();
+      if (rolling) {
+        pairRolling[k].setZero();
       }
+    }
+    pairLive[k] = 0;
+  };
+  const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
+#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
+  for (long b = 0; b < blocks; ++b) {
+    const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
+#if ROCKDEM_AVX2_KERNEL
+    if (simd) {
+      // The block's pairs tested four at a time; those that touch evaluated four at a time.
+      std::uint32_t list[kPairBlock], ended[kPairBlock];
+      std::size_t endedCount = 0;
+      const std::size_t listed = scanPairsAvx2(arrays, static_cast<std::size_t>(b * kPairBlock),
+                                               static_cast<std::size_t>(blockEnd), list, ended, endedCount);
+      for (std::size_t e = 0; e < endedCount; ++e) {
+        endContact(ended[e]);
+      }
+      touchingPairsAvx2(arrays, list, listed);
       continue;
     }
-    const Vec3 normal = branch / distance;
-    const double armI = radius[i] - 0.5 * overlap; // m, centre to contact point
-    const double armJ = radius[j] - 0.5 * overlap;
-    // Slip over the step uses the half-step velocities (exact for the displacement
-    // increment); the viscous damping uses the full-step velocities, predicted from the
-    // last forces, so that restitution does not drift with the number of steps per impact.
-    const Vec3 relativeVelocity = velocity[i] - velocity[j] +
-      spin[i].cross(armI * normal) + spin[j].cross(armJ * normal);
-    const Vec3 predictedVelocity = relativeVelocity +
-      predict * (inverseMass[i] * lastForce[i] - inverseMass[j] * lastForce[j]);
-    const double approachSpeed = predictedVelocity.dot(normal);
-    const NormalResponse response = normalResponse(cm.law, pairConstants[k], overlap, approachSpeed);
-    const double fn = response.force;
-    const Vec3 slip = inPlane(relativeVelocity, normal) * dt;
-    const Vec3 ft =
-      mindlinCoulombForce(response.tangentialStiffness, cm.friction, fn, normal, slip, pairSpring[k]);
-    Vec3 torqueI = armI * normal.cross(ft);
-    Vec3 torqueJ = armJ * normal.cross(ft);
-    if (rolling) {
-      const PairProperties pair =
-        pairProperties(cm, radius[i], massOf(i), radius[j], massOf(j), planar, slab);
-      const Vec3 roll = inPlane(spin[i] - spin[j], normal) * dt;
-      const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, pairRolling[k]);
-      torqueI += mr;
-      torqueJ -= mr;
-    }
-    pairForce[k] = -fn * normal + ft;
-    pairTorqueI[k] = torqueI;
-    pairTorqueJ[k] = torqueJ;
-    pairNormal[k] = fn;
-    pairLive[k] = 1;
-    if (fn != 0.0) {
-      // Two threads may mark the same particle: both write 1.
+#endif
+    for (long k = b * kPairBlock; k < blockEnd; ++k) {
+      const std::uint32_t i = pairI[k];
+      const std::uint32_t j = pairJ[k];
+      const Vec3 branch = separationOf(position[i], position[j]); // from i to j
+      const double reach = radius[i] + radius[j];
+      const double distance2 = branch.squaredNorm();
+      // Most neighbour pairs of a settled pack do not touch (88 % at 100k): those far
+      // enough apart are rejected on the squared distance, before the square root (bit for
+      // bit: see kApart). The others take the distance and the overlap as before.
+      const bool apart = distance2 > kApart * (reach * reach);
+      const double distance = apart ? 0.0 : std::sqrt(distance2); // = branch.norm()
+      const double overlap = reach - distance;
+      if (apart || overlap <= 0.0 || distance == 0.0) {
+        if (pairLive[k]) {
+          endContact(static_cast<std::size_t>(k));
+        }
+        continue;
+      }
+      const ContactConstants& c = pairConstants[k];
+      const TouchingPairInput<Vec3> in{ branch, distance, overlap, radius[i], radius[j],
+        velocity[i], velocity[j], spin[i], spin[j], lastForce[i], lastForce[j],
+        inverseMass[i], inverseMass[j], c.normalStiffness, c.normalDamping, c.tangentialStiffness };
+      const TouchingPairResult<Vec3> r =
+        touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
+      const double fn = r.normalForce;
+      Vec3 torqueI = r.torqueI;
+      Vec3 torqueJ = r.torqueJ;
+      if (rolling) {
+        const Vec3& normal = r.normal;
+        const PairProperties pair =
+          pairProperties(cm, radius[i], massOf(i), radius[j], massOf(j), planar, slab);
+        const Vec3 roll = inPlane(spin[i] - spin[j], normal) * dt;
+        const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, pairRolling[k]);
+        torqueI += mr;
+        torqueJ -= mr;
+      }
+      pairForce[k] = r.force;
+      pairTorqueI[k] = torqueI;
+      pairTorqueJ[k] = torqueJ;
+      pairNormal[k] = fn;
+      pairLive[k] = 1;
+      if (fn != 0.0) {
+        // Two threads may mark the same particle: both write 1.
 #pragma omp atomic write
-      touching[i] = 1;
+        touching[i] = 1;
 #pragma omp atomic write
-      touching[j] = 1;
+        touching[j] = 1;
+      }
     }
   }
 

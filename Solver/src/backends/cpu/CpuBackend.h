@@ -51,6 +51,10 @@ private:
   Model& model_;
   ContactModel contactModel_;
   double timestep_ = 0.0;
+  // The touching pairs run four at a time with AVX2 (TouchingPairsAvx2.cpp) where the
+  // processor has it and the environment variable ROCKDEM_CPU_SIMD is not 0 (read when the
+  // backend is made); the scalar loop otherwise. The same bits either way.
+  bool simd_ = false;
   ContactState state_;
 };
 

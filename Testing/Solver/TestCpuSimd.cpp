@@ -1,0 +1,261 @@
+// The CPU backend's AVX2 touching-pair kernel (Solver/src/backends/cpu/TouchingPairsAvx2.cpp)
+// gives the bits of its scalar pair loop: on the law's edge cases pair by pair, and over
+// whole runs with the scalar loop forced by ROCKDEM_CPU_SIMD=0. Skipped (and says so) on a
+// processor or build without the kernel.
+#include "backends/cpu/TouchingPair.h"
+
+#include "dem/ContactLaws.h"
+#include "dem/Model.h"
+#include "dem/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace dem;
+
+namespace {
+
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+/// Sets or clears ROCKDEM_CPU_SIMD for the lifetime of the object.
+class SimdSetting {
+public:
+  explicit SimdSetting(const char* value)
+  {
+    const char* old = std::getenv("ROCKDEM_CPU_SIMD");
+    hadOld_ = old != nullptr;
+    if (hadOld_) {
+      old_ = old;
+    }
+    if (value) {
+      setenv("ROCKDEM_CPU_SIMD", value, 1);
+    } else {
+      unsetenv("ROCKDEM_CPU_SIMD");
+    }
+  }
+  ~SimdSetting()
+  {
+    if (hadOld_) {
+      setenv("ROCKDEM_CPU_SIMD", old_.c_str(), 1);
+    } else {
+      unsetenv("ROCKDEM_CPU_SIMD");
+    }
+  }
+
+private:
+  bool hadOld_ = false;
+  std::string old_;
+};
+
+/// The kernel is there and enabled (ROCKDEM_CPU_SIMD unset).
+bool kernelAvailable()
+{
+  SimdSetting on(nullptr);
+  return touchingPairsAvx2Enabled();
+}
+
+/// A jittered cubic lattice of 10 x 10 x 10 grains (radii 1 mm +- 5 %, centres 1.96 mm
+/// apart, so that most neighbours overlap and some do not) with random velocities and
+/// spins, in a box whose walls hold it together, under gravity, undamped, friction 0.3, without rolling resistance (the kernel's
+/// case): contacts stick, slide, open and close from the first step.
+Model lattice(ContactLaw law)
+{
+  Model m;
+  // The box's walls press on the outer grains (their gaps 0.98 mm, radii about 1 mm).
+  m.domain.origin = Vec3(0.00202, 0.00202, 0.00202);
+  m.domain.size = Vec3(0.0196, 0.0196, 0.0196);
+  m.material.youngsModulus = 1e8;
+  m.material.poissonsRatio = 0.25;
+  m.material.density = 2650.0;
+  m.material.restitution = 0.5;
+  m.material.friction = 0.3;
+  m.material.rollingFriction = 0.0;
+  m.gravity = Vec3(0.0, 0.0, -9.81);
+  m.solver.settlingDamping = 0.0;
+  m.solver.contactLaw = law;
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int a = 0; a < 10; ++a) {
+    for (int b = 0; b < 10; ++b) {
+      for (int c = 0; c < 10; ++c) {
+        const Vec3 x = Vec3(0.003 + 1.96e-3 * a + 2e-5 * unit(random),
+                            0.003 + 1.96e-3 * b + 2e-5 * unit(random),
+                            0.003 + 1.96e-3 * c + 2e-5 * unit(random));
+        const std::size_t slot = m.particles.size();
+        m.particles.append(x, 1e-3 * (1.0 + 0.05 * unit(random)), m.nextId++);
+        m.particles.velocity[slot] = 0.05 * Vec3(unit(random), unit(random), unit(random));
+        m.particles.angularVelocity[slot] = 20.0 * Vec3(unit(random), unit(random), unit(random));
+      }
+    }
+  }
+  updateMassProperties(m);
+  return m;
+}
+
+} // namespace
+
+// Pair by pair: the lanes against touchingPairForce<double> on random touching pairs and
+// the law's branches: new contacts (zero spring), a spring along the normal (projected to
+// zero), springs beyond the Coulomb limit (sliding), pulling pairs (force cut off at zero:
+// limit 0, spring scaled by 0), zero tangential stiffness, partial last groups (lists of
+// 1 to 4 lanes of a group), fixed particles (inverse mass 0).
+TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
+{
+  if (!kernelAvailable()) {
+    GTEST_SKIP() << "no AVX2 kernel on this processor or build: the scalar loop runs alone";
+  }
+  std::mt19937_64 random(20);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::size_t particles = 40;
+  const std::size_t pairs = 61;
+  std::vector<double> position(3 * particles), velocity(3 * particles), spin(3 * particles),
+    lastForce(3 * particles), radius(particles), inverseMass(particles);
+  for (std::size_t i = 0; i < particles; ++i) {
+    radius[i] = 1e-3 * (1.0 + 0.5 * (unit(random) + 1.0));
+    inverseMass[i] = i % 13 == 5 ? 0.0 : 1.0 / (2650.0 * 4.19 * radius[i] * radius[i] * radius[i]);
+    for (int c = 0; c < 3; ++c) {
+      velocity[3 * i + c] = 0.05 * unit(random);
+      spin[3 * i + c] = 20.0 * unit(random);
+      lastForce[3 * i + c] = 0.01 * unit(random);
+    }
+  }
+  std::vector<std::uint32_t> pairI(pairs), pairJ(pairs);
+  std::vector<double> constants(3 * pairs), spring(3 * pairs);
+  for (std::size_t k = 0; k < pairs; ++k) {
+    pairI[k] = static_cast<std::uint32_t>(k % particles);
+    pairJ[k] = static_cast<std::uint32_t>((k * 7 + 3) % particles);
+    if (pairJ[k] == pairI[k]) {
+      pairJ[k] = (pairI[k] + 1) % particles;
+    }
+    constants[3 * k + 0] = 1e7 * (1.0 + unit(random) * 0.3);         // K, N/m^1.5
+    constants[3 * k + 1] = k % 5 == 0 ? 0.0 : (k % 11 == 0 ? 200.0 : 2.0) * (1.0 + unit(random)); // c sqrt(m* K)
+    constants[3 * k + 2] = k % 17 == 4 ? 0.0 : 1e7 * (1.0 + unit(random) * 0.3);
+    for (int c = 0; c < 3; ++c) {
+      spring[3 * k + c] = k % 4 == 0 ? 0.0 : 1e-5 * unit(random) * (k % 3 == 0 ? 100.0 : 1.0);
+    }
+  }
+  // Positions: each pair is evaluated on its own position array, in which its two
+  // particles overlap (the kernel reads only position[i] and position[j]).
+  for (const bool hertz : { true, false }) {
+    for (std::size_t k = 0; k < pairs; ++k) {
+      std::vector<double> pos(3 * particles, 0.0);
+      const std::uint32_t i = pairI[k], j = pairJ[k];
+      double d[3] = { unit(random), unit(random), unit(random) };
+      const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      const double overlap = (k % 11 == 0 ? 1e-5 : 0.02) * (radius[i] + radius[j]) * (0.5 + 0.5 * std::abs(unit(random)));
+      const double distance = radius[i] + radius[j] - overlap;
+      for (int c = 0; c < 3; ++c) {
+        pos[3 * i + c] = 0.01 * unit(random);
+        pos[3 * j + c] = pos[3 * i + c] + distance * d[c] / length;
+      }
+      // A spring along the normal (rotated into the plane: projected to zero, so zero).
+      std::vector<double> springK(spring.begin() + 3 * k, spring.begin() + 3 * k + 3);
+      if (k % 23 == 7) {
+        for (int c = 0; c < 3; ++c) {
+          springK[c] = 1e-5 * d[c] / length;
+        }
+      }
+      // Scalar reference: the scalar loop's instance (Eigen vectors).
+      const Vec3 branch(pos[3 * j] - pos[3 * i], pos[3 * j + 1] - pos[3 * i + 1], pos[3 * j + 2] - pos[3 * i + 2]);
+      const double separation = std::sqrt(branch.squaredNorm());
+      const double depth = (radius[i] + radius[j]) - separation;
+      ASSERT_GT(depth, 0.0);
+      const Vec3 velocityI(velocity[3 * i], velocity[3 * i + 1], velocity[3 * i + 2]);
+      const Vec3 velocityJ(velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2]);
+      const Vec3 spinI(spin[3 * i], spin[3 * i + 1], spin[3 * i + 2]);
+      const Vec3 spinJ(spin[3 * j], spin[3 * j + 1], spin[3 * j + 2]);
+      const Vec3 lastForceI(lastForce[3 * i], lastForce[3 * i + 1], lastForce[3 * i + 2]);
+      const Vec3 lastForceJ(lastForce[3 * j], lastForce[3 * j + 1], lastForce[3 * j + 2]);
+      const TouchingPairInput<Vec3> in{ branch, separation, depth, radius[i], radius[j],
+        velocityI, velocityJ, spinI, spinJ, lastForceI, lastForceJ, inverseMass[i], inverseMass[j],
+        constants[3 * k], constants[3 * k + 1], constants[3 * k + 2] };
+      const double dt = 5e-6;
+      Vec3 springScalar(springK[0], springK[1], springK[2]);
+      const TouchingPairResult<Vec3> expected =
+        touchingPairForce(in, hertz, 0.3, dt, 0.5 * dt, springScalar);
+
+      // The kernel on lists of 1 to 4 copies of this pair's slot in fresh output arrays:
+      // each list length leaves a different number of lanes unused.
+      for (std::size_t listLength = 1; listLength <= 4; ++listLength) {
+        std::vector<double> springOut(spring), force(3 * pairs, -7.0), torqueI(3 * pairs, -7.0),
+          torqueJ(3 * pairs, -7.0), normal(pairs, -7.0);
+        std::copy(springK.begin(), springK.end(), springOut.begin() + 3 * k);
+        std::vector<std::uint8_t> live(pairs, 0), touching(particles, 0);
+        const TouchingPairArrays arrays{ pos.data(), velocity.data(), spin.data(), lastForce.data(),
+          radius.data(), inverseMass.data(), pairI.data(), pairJ.data(), constants.data(),
+          springOut.data(), force.data(), torqueI.data(), torqueJ.data(), normal.data(),
+          live.data(), touching.data(), hertz, 0.3, dt, 0.5 * dt };
+        // The same pair in every listed lane: the results are stored once per lane, equal.
+        const std::vector<std::uint32_t> list(listLength, static_cast<std::uint32_t>(k));
+        touchingPairsAvx2(arrays, list.data(), list.size());
+        EXPECT_EQ(std::memcmp(&springOut[3 * k], springScalar.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&force[3 * k], expected.force.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&torqueI[3 * k], expected.torqueI.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&torqueJ[3 * k], expected.torqueJ.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&normal[k], &expected.normalForce, sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(live[k], 1);
+        EXPECT_EQ(touching[i] == 1 && touching[j] == 1, expected.normalForce != 0.0) << "pair " << k;
+        // Nothing else was written.
+        for (std::size_t other = 0; other < pairs; ++other) {
+          if (other != k) {
+            EXPECT_EQ(normal[other], -7.0);
+            EXPECT_EQ(force[3 * other], -7.0);
+            EXPECT_EQ(live[other], 0);
+          }
+        }
+      }
+    }
+  }
+}
+
+// Whole runs: with the kernel and with the scalar loop forced (ROCKDEM_CPU_SIMD=0), on one
+// thread and on two, Hertz-Mindlin and linear, the same bits after 1,500 steps of a
+// lively confined lattice whose contacts stick, slide, open and close.
+TEST(CpuSimd, RunsGiveTheScalarLoopBits)
+{
+  if (!kernelAvailable()) {
+    GTEST_SKIP() << "no AVX2 kernel on this processor or build: the scalar loop runs alone";
+  }
+  for (const ContactLaw law : { ContactLaw::HertzMindlin, ContactLaw::Linear }) {
+    const Model start = lattice(law);
+    Model scalar = start;
+    scalar.solver.threads = 1;
+    {
+      SimdSetting off("0");
+      ASSERT_FALSE(touchingPairsAvx2Enabled());
+      Simulation s(scalar);
+      s.advance(1500);
+      EXPECT_GT(s.diagnostics().contacts, 2000u); // about 2,500 pairs and 600 wall contacts
+    }
+    for (const int threads : { 1, 2 }) {
+      Model vector = start;
+      vector.solver.threads = threads;
+      vector.solver.parallelThreshold = 0;
+      SimdSetting on(nullptr);
+      ASSERT_TRUE(touchingPairsAvx2Enabled());
+      Simulation s(vector);
+      s.advance(1500);
+      SCOPED_TRACE(std::string(law == ContactLaw::HertzMindlin ? "Hertz-Mindlin" : "linear") +
+                   ", threads " + std::to_string(threads));
+      EXPECT_TRUE(sameBits(scalar.particles.position, vector.particles.position));
+      EXPECT_TRUE(sameBits(scalar.particles.velocity, vector.particles.velocity));
+      EXPECT_TRUE(sameBits(scalar.particles.angularVelocity, vector.particles.angularVelocity));
+      EXPECT_TRUE(sameBits(scalar.particles.force, vector.particles.force));
+      EXPECT_TRUE(sameBits(scalar.particles.torque, vector.particles.torque));
+      EXPECT_TRUE(sameBits(scalar.contacts.shearSpring, vector.contacts.shearSpring));
+      EXPECT_EQ(scalar.contacts.size(), vector.contacts.size());
+    }
+  }
+}
