@@ -54,7 +54,7 @@ DEFAULT_TOLERANCES = {"youngs_modulus": 0.05, "poissons_ratio": 0.03, "ucs": 0.0
 TENSILE_TESTS = ("direct", "brazilian")
 
 #: The bracket of each bounded variable (Cement.md ranges, narrowed to what is useful).
-BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 4.0),
+BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 30.0),
             "MomentContribution": (0.0, 1.0), "BondRange": (1.0, 2.0),
             "FrictionAngle": (0.0, 60.0)}
 
@@ -63,11 +63,19 @@ BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 4.0),
 #: a bound of its bracket that cannot get closer, the next one takes over from the same
 #: measurement; the property is unreachable when every lever is spent.
 #: UCS / sigma_t: Moment Contribution first (Rock.md, stiff bonds: 5.67 at beta 1, 10.5-11
-#: at 0.5, 14 at 0, with Cohesion = 4 x Tensile), then Cohesion / Tensile (flat at beta 1
-#: in the runs of Calibration.md; lowering it lowers the ratio, Rock.md settings B, D).
-#: The ratio is solved as log(UCS / sigma_t) (it spans 3.7 to 65 over beta 0.5 to 0 on the
-#: granite's specimen: closer to linear in the log), so the slope guesses are d log(ratio) / dx.
-RATIO_LEVERS = (("MomentContribution", -1.8, 0.5), ("CohesionRatio", 0.3, 1.0))
+#: at 0.5, 14 at 0, with Cohesion = 4 x Tensile), then Cohesion / Tensile: at slow loading
+#: (1e-7 platen strain per step, 2,000 grains, beta 0) the ratio is 14.2 / 32.0 / 61.4 at
+#: Cohesion / Tensile 4 / 10 / 20, about 14.2 (q / 4)^0.9 (Calibration.md, "Cohesion /
+#: Tensile Strength at beta 0"); lowering it lowers the ratio (Rock.md settings B, D).
+#: The ratio is solved as log(UCS / sigma_t) (closer to linear in the log), so the slope
+#: guesses are d log(ratio) / dx.
+RATIO_LEVERS = (("MomentContribution", -1.8, 0.5), ("CohesionRatio", 0.12, 6.0))
+#: The measured UCS / sigma_t at Moment Contribution 0 against q = Cohesion / Tensile
+#: (above): RATIO_AT_BETA0 x (q / 4)^RATIO_EXPONENT; calibrate() starts from it when the
+#: target's UCS / sigma_t is above RATIO_AT_BETA0 and the recipe leaves the Moment
+#: Contribution to it (None).
+RATIO_AT_BETA0 = 14.2
+RATIO_EXPONENT = 0.9
 #: friction angle: Bond Range (Rock.md: 41.7 / 48.9 / 54.0 / 57.8 deg at 1.0 / 1.2 / 1.4 /
 #: 1.6, about 27 deg per unit). The bond Friction Angle moved nothing (44-45 deg at 0-60
 #: deg, Calibration.md) and is left at its start value.
@@ -81,7 +89,7 @@ RECIPE_DEFAULTS = {
     "seed": 1,                  # Random Seed of the pack and of the strength draw
     "target_porosity": 0.37,
     "bond_range": 1.4,          # x (rA + rB): bonded coordination about 11 (Rock.md)
-    "moment_contribution": 1.0,
+    "moment_contribution": None,  # start value of beta; None: from the target's UCS / sigma_t (start_levers)
     "strength_scatter": 0.2,
     "grain_friction": 0.5,
     "density": 2650.0,          # kg/m^3
@@ -189,8 +197,8 @@ def validate_recipe(recipe):
         _positive(r, key, "see Calibration.md")
     if not 1.0 <= r["bond_range"] <= 2.0:
         raise _bad("bond_range", r["bond_range"], "valid range [1, 2]")
-    if not 0.0 <= r["moment_contribution"] <= 1.0:
-        raise _bad("moment_contribution", r["moment_contribution"], "valid range [0, 1]")
+    if r["moment_contribution"] is not None and not 0.0 <= r["moment_contribution"] <= 1.0:
+        raise _bad("moment_contribution", r["moment_contribution"], "valid range [0, 1], or None (from the target)")
     return r
 
 
@@ -492,7 +500,7 @@ def cement_properties(p, recipe):
     return {"BondModulus": p["BondModulus"], "BondStiffnessRatio": p["BondStiffnessRatio"],
             "TensileStrength": p["TensileStrength"], "Cohesion": p["TensileStrength"] * p["CohesionRatio"],
             "FrictionAngle": p["FrictionAngle"], "BondRange": p.get("BondRange", recipe["bond_range"]),
-            "MomentContribution": p.get("MomentContribution", recipe["moment_contribution"]),
+            "MomentContribution": p.get("MomentContribution", start_levers({}, recipe)[0]),
             "StrengthScatter": recipe["strength_scatter"], "RandomSeed": recipe["seed"]}
 
 
@@ -695,6 +703,22 @@ class _Bench:
         self.relax = self.cement = self.pack = None
 
 
+def start_levers(target, recipe):
+    """Start values (Moment Contribution, Cohesion / Tensile) of the UCS / sigma_t levers.
+    The recipe's moment_contribution when it sets one (Cohesion / Tensile 4). Otherwise
+    from the measured relation (RATIO_AT_BETA0, RATIO_EXPONENT): a target whose UCS / sigma_t
+    is above what beta 0 gives at Cohesion / Tensile 4 starts at beta 0 and the q that the
+    relation gives for it (within the bracket); any other target starts at beta 1, q 4."""
+    lo, hi = BRACKETS["CohesionRatio"]
+    if recipe.get("moment_contribution") is not None:
+        return float(recipe["moment_contribution"]), 4.0
+    ucs_t, st_t = target.get("ucs"), target.get("tensile_strength")
+    if ucs_t and st_t and ucs_t / st_t > RATIO_AT_BETA0:
+        q = 4.0 * (ucs_t / st_t / RATIO_AT_BETA0) ** (1.0 / RATIO_EXPONENT)
+        return 0.0, min(hi, max(lo, q))
+    return 1.0, 4.0
+
+
 def _ucs_strain(target):
     """Max Strain of a compression to failure: 6 x UCS / E, in [0.005, 0.03]."""
     return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
@@ -804,10 +828,15 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     # strength: Rock.md); Cohesion = 4 x Tensile (Rock.md: what the high ratios need;
     # lower goes the wrong way); bond friction 30 deg; the recipe's Bond Range and Moment
     # Contribution (the levers of phi and UCS / sigma_t).
+    beta0, q0 = start_levers(target, recipe)
     p = {"BondModulus": e_t or 1e9, "BondStiffnessRatio": 0.4,
          "TensileStrength": (ucs_t / 10.0) if ucs_t else (st_t or 1e6),
-         "CohesionRatio": 4.0, "FrictionAngle": 30.0,
-         "BondRange": float(recipe["bond_range"]), "MomentContribution": float(recipe["moment_contribution"])}
+         "CohesionRatio": q0, "FrictionAngle": 30.0,
+         "BondRange": float(recipe["bond_range"]), "MomentContribution": beta0}
+    if beta0 == 0.0 and ucs_t and st_t:
+        # at beta 0 the specimen's sigma_t is about the bond Tensile Strength (1.0-1.05 x,
+        # Calibration.md), so UCS is about (UCS / sigma_t) x Tensile from the start
+        p["TensileStrength"] = st_t
     measured = {}
     unreachable = set()
     spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
