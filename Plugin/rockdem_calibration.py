@@ -959,6 +959,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             def new_scale_solver():
                 return SecantSolver(math.log(ucs_t), slope_guess=1.0, max_step=math.log(4.0)) if ucs_t else None
             s_solver = new_scale_solver()
+            scale_eb = None    # the Bond Modulus of the scale solver's points
             q_chain = LeverChain(RATIO_LEVERS, math.log(ucs_t / st_t), p, spent) if (ucs_t and st_t) else None
             pair = (1 if ucs_t else 0) + (1 if st_t else 0)
             while bench.tests + pair <= max_tests:   # (a compression and a tension per record)
@@ -980,6 +981,18 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 if ucs_t:
                     done = stiffness_step(solvers, m, errs)
                 if s_solver and abs(errs["ucs"]) > tol["ucs"]:
+                    # UCS depends on the Bond Modulus too, which the E secant moves on the
+                    # same tests (granite, 5,000 grains, beta 0, q 8.8: the failure test's E
+                    # read 0.27 x the elastic one, the Bond Modulus went 6.9e10 -> 2.5e11 Pa
+                    # and UCS 182 -> 246 MPa at nearly the same Tensile Strength). Points kept
+                    # at another modulus would bracket the goal falsely (that run then crept
+                    # 7.57 -> 7.10 -> 6.97 -> 6.92 MPa by Illinois steps against a stale end),
+                    # so the scale secant restarts when the modulus has moved by more than
+                    # the E tolerance (its first step, slope 1 on log-log, is proportional).
+                    eb = tested["BondModulus"]
+                    if scale_eb is not None and abs(math.log(eb / scale_eb)) > math.log1p(tol["youngs_modulus"]):
+                        s_solver = new_scale_solver()
+                    scale_eb = eb
                     s_solver.add(math.log(p["TensileStrength"]), math.log(m["ucs"]))
                     p["TensileStrength"] = math.exp(s_solver.next_x())
                     done = False
@@ -1005,6 +1018,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                         # the old lever value, so they start again from the next test
                         # (their first step, slope 1 on log-log, is the proportional one)
                         s_solver = new_scale_solver()
+                        scale_eb = None
                         solvers = [new_e_solver(), None]
                     else:
                         unreachable.add("tensile_strength")
