@@ -241,8 +241,10 @@ class StrengthModulusBench(SyntheticBench):
         return e, nu, ucs * math.sqrt(1e-3 * p["BondModulus"] / p["TensileStrength"]), st, phi
 
 
-res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 150e6, "tensile_strength": 10e6}, {"max_tests": 40},
-                    bench=StrengthModulusBench())
+# (started at beta 1, q 4, as the recipe says, so that beta is the lever: a start from
+# the target's ratio, 15, would be beta 0 and solve it on q instead)
+res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 150e6, "tensile_strength": 10e6},
+                    {"max_tests": 40, "moment_contribution": 1.0}, bench=StrengthModulusBench())
 eb_sm = 20e9 / (0.6 * 1.2)
 beta_sm = (14.0 - 15.0 / math.sqrt(1e-3 * eb_sm / (10e6 / 0.9))) / 8.4
 c.check(res["converged"] and abs(res["parameters"]["MomentContribution"] - beta_sm) < 0.12,
@@ -338,6 +340,18 @@ c.check(res["converged"] and res["tests"] <= 20,
         "UCS moving with the Bond Modulus, failure E 0.27 x elastic: converged in %d tests (the scale "
         "secant restarts when the E secant moves the modulus), errors %s"
         % (res["tests"], {k: round(v, 4) for k, v in res["errors"].items()}))
+# the tensile test's rate: TENSION_STEPS_TO_PEAK steps to the expected peak (sigma_t / Bond
+# Modulus; 30 x for a Brazilian disc), never faster than the recipe's strain per step
+rec = cal.validate_recipe({"strain_per_step": 1e-7})
+sps = cal.tension_strain_per_step({"tensile_strength": 6.9e6}, rec, 2.5e11)
+sps_b = cal.tension_strain_per_step({"tensile_strength": 9.3e6, "tensile_test": "brazilian"}, rec, 2.5e11)
+c.check(abs(sps - 6.9e6 / 2.5e11 / cal.TENSION_STEPS_TO_PEAK) < 1e-20 and sps < 1e-8 and
+        sps_b == min(1e-7, 30 * 9.3e6 / 2.5e11 / cal.TENSION_STEPS_TO_PEAK) and
+        abs(cal.tension_strain_per_step({"tensile_strength": 9.3e6, "tensile_test": "brazilian"}, rec, 1e12)
+            - 30 * 9.3e6 / 1e12 / cal.TENSION_STEPS_TO_PEAK) < 1e-20 and
+        cal.tension_strain_per_step({"tensile_strength": 1e6}, rec, 1e9) == 1e-7 and
+        cal.tension_strain_per_step({}, rec, 2.5e11) == 1e-7,
+        "tensile test rate: granite direct %.3g, Brazilian %.3g per step; capped at the recipe's 1e-7" % (sps, sps_b))
 c.check(cal.start_levers({"ucs": 58e6, "tensile_strength": 2e6}, cal.validate_recipe({"moment_contribution": 0.5}))
         == (0.5, 4.0) and cal.start_levers({"ucs": 58e6, "tensile_strength": 8e6}, cal.validate_recipe({})) == (1.0, 4.0),
         "start levers: the recipe's Moment Contribution when set; beta 1, q 4 below the beta-0 ratio")
