@@ -611,18 +611,19 @@ class _Bench:
         self.simple.Delete(result["proxy"])
         return result
 
-    def tension(self, p, max_strain):
+    def tension(self, p, max_strain, strain_per_step=None):
         """The target's tensile test (TENSILE_TESTS) on the pack cemented with p; returns a
-        dict whose tensile_strength is what that test calls the tensile strength."""
+        dict whose tensile_strength is what that test calls the tensile strength.
+        strain_per_step: the platen strain per step; None: tension_strain_per_step's."""
+        sps = strain_per_step or tension_strain_per_step(self.target, self.recipe, p["BondModulus"])
         kind = self.target.get("tensile_test", "direct")
         if kind not in TENSILE_TESTS:
             raise _bad("tensile_test", kind, "valid: %s" % ", ".join(repr(k) for k in TENSILE_TESTS))
         model = self._cemented(p)
         self.tests += 1
         if kind == "brazilian":
-            return self.brazilian(model, p, max_strain)
-        result = self.rockdem.tension_test(model, **self._press(
-            "Tension", max_strain, 0.5, tension_strain_per_step(self.target, self.recipe, p["BondModulus"])))
+            return self.brazilian(model, p, max_strain, sps)
+        result = self.rockdem.tension_test(model, **self._press("Tension", max_strain, 0.5, sps))
         self.simple.Delete(result["proxy"])
         return result
 
@@ -632,12 +633,12 @@ class _Bench:
         d = min(self.pack_props["XDimension"], self.pack_props["YDimension"])
         return d, 0.5 * d
 
-    def brazilian(self, model, p, max_strain):
+    def brazilian(self, model, p, max_strain, strain_per_step=None):
         """The laboratory's Brazilian test on the cemented model: a disc is carved out of it
         (DEM Specimen, Shape Disc, axis Z, at the box's centre; the bonds to the removed
         grains go with them, as a core cut from a block loses them), relaxed like the box
         (about 100 steps) and squeezed along Y (DEM Load Test Mode Brazilian, until the
-        load has fallen below half its peak) at the recipe's platen strain per step. When
+        load has fallen below half its peak) at strain_per_step (tension passes tension_strain_per_step). When
         the disc has not failed by max_strain (the load still above half its peak: the
         peak read would be a lower bound), the test is run again on the same relaxed disc
         to 4 x the strain, at most twice. Returns rockdem.brazilian_test's dict
@@ -656,8 +657,7 @@ class _Bench:
                                    % (diameter, thickness, rd.read_only(disc, "LastMessage")))
             relax = self._relaxed(disc, p)
             for attempt in range(3):
-                result = rd.brazilian_test(relax, axis="Y", **self._press(
-                    "Brazilian", max_strain, 0.5, tension_strain_per_step(self.target, self.recipe, p["BondModulus"])))
+                result = rd.brazilian_test(relax, axis="Y", **self._press("Brazilian", max_strain, 0.5, strain_per_step))
                 failed = abs(rd.read_only(result["proxy"], "AxialStress")) < 0.5 * abs(result["brazilian_strength"])
                 self.simple.Delete(result["proxy"])
                 if failed or attempt == 2:

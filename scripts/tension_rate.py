@@ -1,0 +1,48 @@
+"""The calibration's tensile test on a parameter file at a chosen platen strain per step.
+
+    pvpython scripts/tension_rate.py PARAMETER_FILE STRAIN_PER_STEP
+
+Rebuilds the file's specimen (its recipe, seed and cement) as rockdem.calibrate does,
+pulls it with the file's tensile test type at STRAIN_PER_STEP (-, platen strain per
+timestep) and prints the tensile strength (Pa) it reads. Documentation/Calibration.md,
+"The tensile test's rate", has the granite's series.
+"""
+import os
+import sys
+import time
+
+from paraview.simple import LoadPlugin
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE_DIR = os.path.dirname(HERE)
+LoadPlugin(os.path.join(SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so"),
+           remote=False, ns=globals())
+sys.path.insert(0, os.path.join(SOURCE_DIR, "Plugin"))
+import rockdem_calibration as cal  # noqa: E402
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    path, rate = sys.argv[1], float(sys.argv[2])
+    if not rate > 0:
+        sys.exit("STRAIN_PER_STEP = %r: must be > 0" % rate)
+    doc = cal.load_parameters(path)
+    target = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
+    if "tensile_strength" not in target:
+        # a file calibrated without sigma_t: the preset's value sets only the Max Strain
+        target = cal.validate_target(dict(target, tensile_strength=cal.load_rock(doc["rock"])["tensile_strength"])
+                                     if doc.get("rock") else dict(target, tensile_strength=1e6))
+    recipe = cal.validate_recipe(doc["recipe"])
+    bench = cal._Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+    t0 = time.time()
+    try:
+        r = bench.tension(doc["parameters"], cal._tension_strain(target), strain_per_step=rate)
+    finally:
+        bench.close()
+    print("strain per step %g: %s tensile strength %.4g Pa (%.0f s)"
+          % (rate, target.get("tensile_test", "direct"), r["tensile_strength"], time.time() - t0))
+
+
+if __name__ == "__main__":
+    main()
