@@ -33,6 +33,16 @@ int availableThreads()
 #endif
 }
 
+/// This thread's rank in the current team (0 outside one).
+int teamRank()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
 /// dem::minimumImage for the hot loops: a box without periodic axes (and not a 2D section)
 /// takes the plain difference, decided once.
 class MinimumImage {
@@ -61,7 +71,82 @@ Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumI
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
 /// stack) and evaluates them at the block's end, while its arrays are still in cache.
 constexpr long kPairBlock = 256;
+
+/// Particles per chunk of the gather (the unit of its cost count and of its partition).
+constexpr long kGatherChunk = 256;
+
+// The work of a block of pairs and of a chunk of the gather, counted as the loops run, in
+// rough relative units: a pair's test 1 and a touching pair 5 (with AVX2 about 40 and 200
+// instructions); in the gather a particle 2 and each entry of its list that it walks 1
+// (about 20 and 9 ns in the settled 100k pack on one thread), a wall entry 2. Only the
+// ratios matter, and only for speed: they weigh the segments of ChunkClaims when there are
+// more than two threads (balancedRanges).
+constexpr std::uint32_t kPairCost = 1;
+constexpr std::uint32_t kTouchingPairCost = 5;
+constexpr std::uint32_t kParticleCost = 2;
+constexpr std::uint32_t kEntryCost = 1;
+constexpr std::uint32_t kWallEntryCost = 2;
 } // namespace
+
+void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds)
+{
+  const long chunks = static_cast<long>(cost.size());
+  parts = std::max(parts, 1);
+  bounds.assign(static_cast<std::size_t>(parts) + 1, chunks);
+  bounds[0] = 0;
+  std::uint64_t total = 0;
+  for (const std::uint32_t c : cost) {
+    total += c;
+  }
+  // Part p ends at the first chunk boundary where the running cost reaches p / parts of
+  // the total (integers: the same ranges on every machine).
+  std::uint64_t sum = 0;
+  long c = 0;
+  for (int part = 1; part < parts; ++part) {
+    const std::uint64_t target = total * static_cast<std::uint64_t>(part) / static_cast<std::uint64_t>(parts);
+    while (c < chunks && sum + cost[static_cast<std::size_t>(c)] / 2 < target) {
+      sum += cost[static_cast<std::size_t>(c)];
+      ++c;
+    }
+    bounds[static_cast<std::size_t>(part)] = c;
+  }
+}
+
+void ChunkClaims::reset(const std::vector<long>& bounds)
+{
+  const int segments = static_cast<int>(bounds.size()) - 1;
+  if (segments > capacity_) {
+    ends_.reset(new Ends[static_cast<std::size_t>(segments)]);
+    capacity_ = segments;
+  }
+  segments_ = std::max(segments, 0);
+  for (int s = 0; s < segments_; ++s) {
+    if (bounds[static_cast<std::size_t>(s) + 1] >= (1l << 32)) {
+      throw InputError("A parallel loop has " + std::to_string(bounds.back()) +
+                       " chunks; the CPU backend hands out at most 2^32.");
+    }
+    const std::uint64_t front = static_cast<std::uint64_t>(bounds[static_cast<std::size_t>(s)]);
+    const std::uint64_t back = static_cast<std::uint64_t>(bounds[static_cast<std::size_t>(s) + 1]);
+    ends_[s].ends.store(front | (back << 32), std::memory_order_relaxed);
+  }
+}
+
+long ChunkClaims::claim(int s, bool fromFront)
+{
+  std::atomic<std::uint64_t>& ends = ends_[s].ends;
+  std::uint64_t now = ends.load(std::memory_order_relaxed);
+  for (;;) {
+    const std::uint64_t front = now & 0xffffffffu;
+    const std::uint64_t back = now >> 32;
+    if (front >= back) {
+      return -1;
+    }
+    const std::uint64_t next = fromFront ? ((front + 1) | (back << 32)) : (front | ((back - 1) << 32));
+    if (ends.compare_exchange_weak(now, next, std::memory_order_relaxed)) {
+      return static_cast<long>(fromFront ? front : back - 1);
+    }
+  }
+}
 
 #if ROCKDEM_AVX2_KERNEL
 bool touchingPairsAvx2Enabled()
@@ -542,8 +627,18 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
     pairLive[k] = 0;
   };
   const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long b = 0; b < blocks; ++b) {
+  // The blocks are handed out by ChunkClaims: one segment per two threads, of about equal
+  // work as the blocks' work at the last step weighs it (a block new since a rebuild counts
+  // its pairs as not touching).
+  const int segments = im.parallel ? (im.threads + 1) / 2 : 1;
+  pairBlockCost_.resize(static_cast<std::size_t>(blocks), kPairBlock * kPairCost);
+  balancedRanges(pairBlockCost_, segments, pairRanges_);
+  pairClaims_.reset(pairRanges_);
+  std::uint32_t* const blockCost = pairBlockCost_.data();
+  ChunkClaims& pairClaims = pairClaims_;
+#pragma omp parallel num_threads(im.threads) if (im.parallel)
+  for (ChunkClaims::Cursor cursor(pairClaims, teamRank()); cursor.next();) {
+    const long b = cursor.chunk();
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
 #if ROCKDEM_AVX2_KERNEL
     if (simd) {
@@ -556,9 +651,11 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         endContact(ended[e]);
       }
       touchingPairsAvx2(arrays, list, listed);
+      blockCost[b] = static_cast<std::uint32_t>((blockEnd - b * kPairBlock) * kPairCost + listed * kTouchingPairCost);
       continue;
     }
 #endif
+    std::uint32_t evaluated = 0;
     for (long k = b * kPairBlock; k < blockEnd; ++k) {
       const std::uint32_t i = pairI[k];
       const std::uint32_t j = pairJ[k];
@@ -583,6 +680,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         inverseMass[i], inverseMass[j], c.normalStiffness, c.normalDamping, c.tangentialStiffness };
       const TouchingPairResult<Vec3> r =
         touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
+      ++evaluated;
       const double fn = r.normalForce;
       Vec3 torqueI = r.torqueI;
       Vec3 torqueJ = r.torqueJ;
@@ -608,6 +706,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         touching[j] = 1;
       }
     }
+    blockCost[b] = static_cast<std::uint32_t>((blockEnd - b * kPairBlock) * kPairCost + evaluated * kTouchingPairCost);
   }
 
   // 2. Bonds, each once (state updated and failure checked only on a real step).
@@ -690,74 +789,90 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   const double* const mass = p.mass.data();
   const std::uint32_t* const adjacencyStart = im.adjacencyStart.data();
   const std::uint32_t* const adjacency = im.adjacency.data();
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    Vec3 force = mass[i] * gravity;
-    Vec3 torque = Vec3::Zero();
-    // Without a touching pair (none has a non-zero normal force) the list adds nothing.
-    const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
-    touching[i] = 0;
-    for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
-      const std::uint32_t entry = adjacency[e];
-      const std::uint32_t k = entry >> 1;
-      if (pairNormal[k] == 0.0) {
-        continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
-      }
-      if (entry & 1u) {
-        force -= pairForce[k];
-        torque += pairTorqueJ[k];
-      } else {
-        force += pairForce[k];
-        torque += pairTorqueI[k];
-      }
-    }
-    for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
-      wallContact(e, i, force, torque);
-    }
-    if (anyBonds) {
-      for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
-        const std::size_t b = im.bondAdjacency[e] >> 1;
-        if (model_.bonds.broken(b)) {
-          continue;
+  // The chunks are handed out by ChunkClaims, as the pair loop's blocks are.
+  const long chunks = (count + kGatherChunk - 1) / kGatherChunk;
+  gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kParticleCost);
+  balancedRanges(gatherChunkCost_, segments, gatherRanges_);
+  gatherClaims_.reset(gatherRanges_);
+  std::uint32_t* const chunkCost = gatherChunkCost_.data();
+  ChunkClaims& gatherClaims = gatherClaims_;
+#pragma omp parallel num_threads(im.threads) if (im.parallel)
+  for (ChunkClaims::Cursor cursor(gatherClaims, teamRank()); cursor.next();) {
+    const long c = cursor.chunk();
+    const long chunkEnd = std::min(count, (c + 1) * kGatherChunk);
+    std::uint32_t work = static_cast<std::uint32_t>((chunkEnd - c * kGatherChunk) * kParticleCost);
+    for (long li = c * kGatherChunk; li < chunkEnd; ++li) {
+      const std::size_t i = static_cast<std::size_t>(li);
+      Vec3 force = mass[i] * gravity;
+      Vec3 torque = Vec3::Zero();
+      // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+      const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
+      touching[i] = 0;
+      work += (pairEnd - adjacencyStart[i]) * kEntryCost;
+      for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
+        const std::uint32_t entry = adjacency[e];
+        const std::uint32_t k = entry >> 1;
+        if (pairNormal[k] == 0.0) {
+          continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
         }
-        if (im.bondAdjacency[e] & 1u) {
-          force -= im.bondForce[b];
-          torque += im.bondTorqueJ[b];
+        if (entry & 1u) {
+          force -= pairForce[k];
+          torque += pairTorqueJ[k];
         } else {
-          force += im.bondForce[b];
-          torque += im.bondTorqueI[b];
+          force += pairForce[k];
+          torque += pairTorqueI[k];
+        }
+      }
+      for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
+        wallContact(e, i, force, torque);
+      }
+      work += (im.wallStart[i + 1] - im.wallStart[i]) * kWallEntryCost;
+      if (anyBonds) {
+        work += static_cast<std::uint32_t>(im.bondAdjacencyStart[i + 1] - im.bondAdjacencyStart[i]) * kEntryCost;
+        for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+          const std::size_t b = im.bondAdjacency[e] >> 1;
+          if (model_.bonds.broken(b)) {
+            continue;
+          }
+          if (im.bondAdjacency[e] & 1u) {
+            force -= im.bondForce[b];
+            torque += im.bondTorqueJ[b];
+          } else {
+            force += im.bondForce[b];
+            torque += im.bondTorqueI[b];
+          }
+        }
+      }
+      if (anyExternal) {
+        force += im.externalForce[i];
+      }
+      if (planar) {
+        force.z() = 0.0;
+        torque.x() = 0.0;
+        torque.y() = 0.0;
+      }
+      im.undampedForce[i] = force;
+      Vec3 damped = force;
+      Vec3 dampedTorque = torque;
+      if (alpha > 0.0) {
+        for (int c = 0; c < 3; ++c) {
+          damped[c] = cundallDamping(force[c], p.velocity[i][c], alpha);
+          dampedTorque[c] = cundallDamping(torque[c], p.angularVelocity[i][c], alpha);
+        }
+      }
+      p.force[i] = damped;
+      p.torque[i] = dampedTorque;
+      if (closingKick && im.inverseMass[i] != 0.0) {
+        p.velocity[i] += (half * im.inverseMass[i]) * damped;
+        p.angularVelocity[i] += (half * im.inverseInertia[i]) * dampedTorque;
+        if (planar) {
+          p.velocity[i].z() = 0.0;
+          p.angularVelocity[i].x() = 0.0;
+          p.angularVelocity[i].y() = 0.0;
         }
       }
     }
-    if (anyExternal) {
-      force += im.externalForce[i];
-    }
-    if (planar) {
-      force.z() = 0.0;
-      torque.x() = 0.0;
-      torque.y() = 0.0;
-    }
-    im.undampedForce[i] = force;
-    Vec3 damped = force;
-    Vec3 dampedTorque = torque;
-    if (alpha > 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        damped[c] = cundallDamping(force[c], p.velocity[i][c], alpha);
-        dampedTorque[c] = cundallDamping(torque[c], p.angularVelocity[i][c], alpha);
-      }
-    }
-    p.force[i] = damped;
-    p.torque[i] = dampedTorque;
-    if (closingKick && im.inverseMass[i] != 0.0) {
-      p.velocity[i] += (half * im.inverseMass[i]) * damped;
-      p.angularVelocity[i] += (half * im.inverseInertia[i]) * dampedTorque;
-      if (planar) {
-        p.velocity[i].z() = 0.0;
-        p.angularVelocity[i].x() = 0.0;
-        p.angularVelocity[i].y() = 0.0;
-      }
-    }
+    chunkCost[c] = work;
   }
 
   // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
