@@ -66,6 +66,41 @@ private:
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
 
+/// The opening half kick of velocity Verlet and the drift of particle i, with the periodic
+/// wrap: true when it has moved half the skin (limit2 is its square) since the neighbour
+/// list was built. It reads and writes particle i's state only. (All by value or raw
+/// pointer, as the hot loops read the arrays: CpuBackend::computeForces.)
+[[gnu::always_inline]] inline bool kickAndDrift(std::size_t i, Vec3* position, Vec3* velocity, Vec3* spin,
+  Vec3* displacement, const Vec3* force, const Vec3* torque, const Vec3* positionAtBuild,
+  const double* inverseMass, const double* inverseInertia, double dt, double half, bool planar,
+  bool anyPeriodic, const Domain& d, const MinimumImage& separationOf, double limit2)
+{
+  // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+  // 0), but it moves with the velocity it was given (at rest unless prescribed).
+  velocity[i] += (half * inverseMass[i]) * force[i];
+  spin[i] += (half * inverseInertia[i]) * torque[i];
+  if (planar) {
+    velocity[i].z() = 0.0;
+    spin[i].x() = 0.0;
+    spin[i].y() = 0.0;
+  }
+  const Vec3 move = dt * velocity[i];
+  position[i] += move;
+  displacement[i] += move;
+  for (int k = 0; anyPeriodic && k < 3; ++k) {
+    if (d.periodic[k]) {
+      const double lo = d.origin[k];
+      const double length = d.size[k];
+      if (position[i][k] < lo) {
+        position[i][k] += length;
+      } else if (position[i][k] >= lo + length) {
+        position[i][k] -= length;
+      }
+    }
+  }
+  return separationOf(positionAtBuild[i], position[i]).squaredNorm() > limit2;
+}
+
 // kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
@@ -86,6 +121,7 @@ constexpr std::uint32_t kTouchingPairCost = 5;
 constexpr std::uint32_t kParticleCost = 2;
 constexpr std::uint32_t kEntryCost = 1;
 constexpr std::uint32_t kWallEntryCost = 2;
+constexpr std::uint32_t kDriftCost = 1; // a particle's kick and drift, done in the gather
 } // namespace
 
 void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds)
@@ -238,8 +274,14 @@ std::string CpuBackend::path() const
 
 void CpuBackend::run(std::int64_t steps)
 {
+  // Within one run(), each step's gather also does the next step's opening half kick and
+  // drift, particle by particle, right after the particle's closing half kick (the same
+  // operations on the same values: a particle's kick and drift read only its own state,
+  // which its gather has just finished; the thread that gathered a particle moves it, while
+  // it is in that thread's cache, and one pass and one fork/join per step are saved). The
+  // last step of a run does not, so between runs the state is that of whole steps.
   for (std::int64_t s = 0; s < steps; ++s) {
-    step();
+    step(s + 1 == steps);
   }
 }
 
@@ -554,7 +596,7 @@ bool CpuBackend::wallsMoved() const
 // ---------------------------------------------------------------------------------------
 // Forces
 
-void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
+void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool driftNext)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -796,7 +838,20 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   gatherClaims_.reset(gatherRanges_);
   std::uint32_t* const chunkCost = gatherChunkCost_.data();
   ChunkClaims& gatherClaims = gatherClaims_;
-#pragma omp parallel num_threads(im.threads) if (im.parallel)
+  // With driftNext, the next step's kick and drift (step(), run()).
+  bool stale = false; // the drift made the neighbour list stale
+  Vec3* const movePosition = p.position.data();
+  Vec3* const moveVelocity = p.velocity.data();
+  Vec3* const moveSpin = p.angularVelocity.data();
+  Vec3* const moveDisplacement = p.displacement.data();
+  const Vec3* const moveForce = p.force.data();
+  const Vec3* const moveTorque = p.torque.data();
+  const Vec3* const positionAtBuild = im.positionAtBuild.data();
+  const double* const inverseInertia = im.inverseInertia.data();
+  const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
+  const double skinLimit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+  const double limit2 = skinLimit * skinLimit;
+#pragma omp parallel num_threads(im.threads) if (im.parallel) reduction(|| : stale)
   for (ChunkClaims::Cursor cursor(gatherClaims, teamRank()); cursor.next();) {
     const long c = cursor.chunk();
     const long chunkEnd = std::min(count, (c + 1) * kGatherChunk);
@@ -871,9 +926,16 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
           p.angularVelocity[i].y() = 0.0;
         }
       }
+      if (driftNext && kickAndDrift(i, movePosition, moveVelocity, moveSpin, moveDisplacement, moveForce,
+                                    moveTorque, positionAtBuild, inverseMass, inverseInertia, timestep_, half,
+                                    planar, anyPeriodic, d, separationOf, limit2)) {
+        stale = true;
+      }
     }
-    chunkCost[c] = work;
+    chunkCost[c] = work + (driftNext ? static_cast<std::uint32_t>(chunkEnd - c * kGatherChunk) * kDriftCost : 0u);
   }
+  drifted_ = driftNext;
+  driftedStale_ = driftNext && stale;
 
   // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
   // wall's sum runs in slot order (deterministic).
@@ -1007,7 +1069,7 @@ void CpuBackend::computeBondForces(bool incrementState)
 // ---------------------------------------------------------------------------------------
 // Stepping
 
-void CpuBackend::step()
+void CpuBackend::step(bool last)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -1019,12 +1081,12 @@ void CpuBackend::step()
   const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = limit * limit;
   const MinimumImage separationOf(d);
-  const std::array<bool, 3> periodic = d.periodic;
-  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
+  const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
 
   // Half kick with the forces of the last step, then drift; note whether any particle
-  // has moved half the skin since the neighbour list was built.
-  bool stale = false;
+  // has moved half the skin since the neighbour list was built. Done already where the
+  // last step's gather did it (run()).
+  bool stale = driftedStale_;
   Vec3* const position = p.position.data(); // raw pointers, as in computeForces
   Vec3* const velocity = p.velocity.data();
   Vec3* const spin = p.angularVelocity.data();
@@ -1034,36 +1096,18 @@ void CpuBackend::step()
   const Vec3* const positionAtBuild = im.positionAtBuild.data();
   const double* const inverseMass = im.inverseMass.data();
   const double* const inverseInertia = im.inverseInertia.data();
+  if (!drifted_) {
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
-    // 0), but it moves with the velocity it was given (at rest unless prescribed).
-    velocity[i] += (half * inverseMass[i]) * force[i];
-    spin[i] += (half * inverseInertia[i]) * torque[i];
-    if (planar) {
-      velocity[i].z() = 0.0;
-      spin[i].x() = 0.0;
-      spin[i].y() = 0.0;
-    }
-    const Vec3 move = dt * velocity[i];
-    position[i] += move;
-    displacement[i] += move;
-    for (int k = 0; anyPeriodic && k < 3; ++k) {
-      if (periodic[k]) {
-        const double lo = d.origin[k];
-        const double length = d.size[k];
-        if (position[i][k] < lo) {
-          position[i][k] += length;
-        } else if (position[i][k] >= lo + length) {
-          position[i][k] -= length;
-        }
+    for (long li = 0; li < count; ++li) {
+      if (kickAndDrift(static_cast<std::size_t>(li), position, velocity, spin, displacement, force, torque,
+                       positionAtBuild, inverseMass, inverseInertia, dt, half, planar, anyPeriodic, d,
+                       separationOf, limit2)) {
+        stale = true;
       }
     }
-    if (separationOf(positionAtBuild[i], position[i]).squaredNorm() > limit2) {
-      stale = true;
-    }
   }
+  drifted_ = false;
+  driftedStale_ = false;
   controlWalls(model_, timestep_, im.smallestRadius);
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
@@ -1075,8 +1119,9 @@ void CpuBackend::step()
   } else if (wallsMoved()) {
     rebuildWallContacts(true);
   }
-  // New forces, then the second half kick (in the same pass).
-  computeForces(true, true);
+  // New forces, then the second half kick (in the same pass), and unless this is the
+  // run's last step, the next step's half kick and drift.
+  computeForces(true, true, !last);
   model_.clock.step += 1;
   model_.clock.time += dt;
 }

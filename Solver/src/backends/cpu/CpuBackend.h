@@ -117,8 +117,8 @@ private:
   void decideParallel();
   void buildBondLists();
   void computeBondForces(bool incrementState);
-  void computeForces(bool incrementHistory, bool closingKick);
-  void step();
+  void computeForces(bool incrementHistory, bool closingKick, bool driftNext = false);
+  void step(bool last);
 
   Model& model_;
   ContactModel contactModel_;
@@ -134,6 +134,10 @@ private:
   std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_;
   std::vector<long> pairRanges_, gatherRanges_;
   ChunkClaims pairClaims_, gatherClaims_;
+  // run() did the next step's kick and drift in the last gather (and whether that made the
+  // neighbour list stale): the step starts at the wall control.
+  bool drifted_ = false;
+  bool driftedStale_ = false;
 };
 
 } // namespace dem
