@@ -33,13 +33,21 @@ int availableThreads()
 #endif
 }
 
-/// This thread's rank in the current team (0 outside one).
+/// This thread's rank in the current team, and the team's size (0 and 1 outside one).
 int teamRank()
 {
 #ifdef _OPENMP
   return omp_get_thread_num();
 #else
   return 0;
+#endif
+}
+int teamSize()
+{
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
 #endif
 }
 
@@ -111,16 +119,16 @@ constexpr long kPairBlock = 256;
 constexpr long kGatherChunk = 256;
 
 // The work of a block of pairs and of a chunk of the gather, counted as the loops run, in
-// rough relative units: a pair's test 1 and a touching pair 5 (with AVX2 about 40 and 200
-// instructions); in the gather a particle 2 and each entry of its list that it walks 1
-// (about 20 and 9 ns in the settled 100k pack on one thread), a wall entry 2. Only the
-// ratios matter, and only for speed: they weigh the segments of ChunkClaims when there are
-// more than two threads (balancedRanges).
-constexpr std::uint32_t kPairCost = 1;
-constexpr std::uint32_t kTouchingPairCost = 5;
-constexpr std::uint32_t kParticleCost = 2;
-constexpr std::uint32_t kEntryCost = 1;
-constexpr std::uint32_t kWallEntryCost = 2;
+// rough relative units, fitted to the two threads' times on the settled 100k pack (where
+// the contacts sit in the lower slots): a pair's test 2 and a touching pair 9 more (with
+// AVX2 about 40 and 160 instructions); in the gather a particle 4, each entry of its pair
+// list that it walks 3, a wall entry 4, and its kick and drift for the next step 1. Only
+// the ratios matter, and only for speed (balancedRanges).
+constexpr std::uint32_t kPairCost = 2;
+constexpr std::uint32_t kTouchingPairCost = 9;
+constexpr std::uint32_t kParticleCost = 4;
+constexpr std::uint32_t kEntryCost = 3;
+constexpr std::uint32_t kWallEntryCost = 4;
 constexpr std::uint32_t kDriftCost = 1; // a particle's kick and drift, done in the gather
 } // namespace
 
@@ -145,42 +153,6 @@ void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vect
       ++c;
     }
     bounds[static_cast<std::size_t>(part)] = c;
-  }
-}
-
-void ChunkClaims::reset(const std::vector<long>& bounds)
-{
-  const int segments = static_cast<int>(bounds.size()) - 1;
-  if (segments > capacity_) {
-    ends_.reset(new Ends[static_cast<std::size_t>(segments)]);
-    capacity_ = segments;
-  }
-  segments_ = std::max(segments, 0);
-  for (int s = 0; s < segments_; ++s) {
-    if (bounds[static_cast<std::size_t>(s) + 1] >= (1l << 32)) {
-      throw InputError("A parallel loop has " + std::to_string(bounds.back()) +
-                       " chunks; the CPU backend hands out at most 2^32.");
-    }
-    const std::uint64_t front = static_cast<std::uint64_t>(bounds[static_cast<std::size_t>(s)]);
-    const std::uint64_t back = static_cast<std::uint64_t>(bounds[static_cast<std::size_t>(s) + 1]);
-    ends_[s].ends.store(front | (back << 32), std::memory_order_relaxed);
-  }
-}
-
-long ChunkClaims::claim(int s, bool fromFront)
-{
-  std::atomic<std::uint64_t>& ends = ends_[s].ends;
-  std::uint64_t now = ends.load(std::memory_order_relaxed);
-  for (;;) {
-    const std::uint64_t front = now & 0xffffffffu;
-    const std::uint64_t back = now >> 32;
-    if (front >= back) {
-      return -1;
-    }
-    const std::uint64_t next = fromFront ? ((front + 1) | (back << 32)) : (front | ((back - 1) << 32));
-    if (ends.compare_exchange_weak(now, next, std::memory_order_relaxed)) {
-      return static_cast<long>(fromFront ? front : back - 1);
-    }
   }
 }
 
@@ -669,18 +641,18 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     pairLive[k] = 0;
   };
   const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
-  // The blocks are handed out by ChunkClaims: one segment per two threads, of about equal
-  // work as the blocks' work at the last step weighs it (a block new since a rebuild counts
-  // its pairs as not touching).
-  const int segments = im.parallel ? (im.threads + 1) / 2 : 1;
+  // Each thread takes one contiguous range of blocks, of about equal work as the blocks'
+  // work at the last step weighs it (a block new since a rebuild counts its pairs as not
+  // touching): equal shares of the pairs gave the thread holding the contact-rich part of
+  // a pack most of the work (balancedRanges).
+  const int parts = im.parallel ? im.threads : 1;
   pairBlockCost_.resize(static_cast<std::size_t>(blocks), kPairBlock * kPairCost);
-  balancedRanges(pairBlockCost_, segments, pairRanges_);
-  pairClaims_.reset(pairRanges_);
+  balancedRanges(pairBlockCost_, parts, pairRanges_);
   std::uint32_t* const blockCost = pairBlockCost_.data();
-  ChunkClaims& pairClaims = pairClaims_;
+  const long* const pairRanges = pairRanges_.data();
 #pragma omp parallel num_threads(im.threads) if (im.parallel)
-  for (ChunkClaims::Cursor cursor(pairClaims, teamRank()); cursor.next();) {
-    const long b = cursor.chunk();
+  for (int part = teamRank(); part < parts; part += teamSize())
+  for (long b = pairRanges[part]; b < pairRanges[part + 1]; ++b) {
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
 #if ROCKDEM_AVX2_KERNEL
     if (simd) {
@@ -831,13 +803,13 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const double* const mass = p.mass.data();
   const std::uint32_t* const adjacencyStart = im.adjacencyStart.data();
   const std::uint32_t* const adjacency = im.adjacency.data();
-  // The chunks are handed out by ChunkClaims, as the pair loop's blocks are.
+  // Each thread takes one contiguous range of chunks of about equal work, as the pair loop
+  // takes its blocks (and, with driftNext, moves the particles it gathered).
   const long chunks = (count + kGatherChunk - 1) / kGatherChunk;
   gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kParticleCost);
-  balancedRanges(gatherChunkCost_, segments, gatherRanges_);
-  gatherClaims_.reset(gatherRanges_);
+  balancedRanges(gatherChunkCost_, parts, gatherRanges_);
   std::uint32_t* const chunkCost = gatherChunkCost_.data();
-  ChunkClaims& gatherClaims = gatherClaims_;
+  const long* const gatherRanges = gatherRanges_.data();
   // The particle arrays the gather writes, through raw pointers (as in the pair loop).
   Vec3* const movePosition = p.position.data();
   Vec3* const moveVelocity = p.velocity.data();
@@ -857,8 +829,8 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const double skinLimit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = skinLimit * skinLimit;
 #pragma omp parallel num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-  for (ChunkClaims::Cursor cursor(gatherClaims, teamRank()); cursor.next();) {
-    const long chunk = cursor.chunk();
+  for (int part = teamRank(); part < parts; part += teamSize())
+  for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
     std::uint32_t walked = 0; // entries of the pair lists walked

@@ -18,9 +18,7 @@
 #include "dem/ContactLaws.h"
 #include "dem/Model.h"
 
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,72 +26,11 @@ namespace dem {
 
 /// Splits the chunks [0, cost.size()) into `parts` contiguous ranges of about equal total
 /// cost: part p is [bounds[p], bounds[p + 1]). The CPU backend splits the blocks of its pair
-/// loop and the chunks of its gather so, weighed by their work at the previous step, into
-/// one segment per two threads (ChunkClaims), so that the threads holding the contact-rich
-/// part of a pack do not do most of the work while the others wait (which thread computes
-/// a result never changes a bit of it).
+/// loop and the chunks of its gather so, one range per thread, weighed by their work at the
+/// previous step, so that the thread holding the contact-rich part of a pack does not do
+/// most of the work while the others wait (which thread computes a result never changes a
+/// bit of it).
 void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds);
-
-/// Hands out the chunks of a parallel loop: the chunks are split into segments (ranges of
-/// about equal cost, balancedRanges), and each segment is taken by two threads, one from its
-/// front and one from its back, one chunk at a time, until they meet. A thread that finds
-/// its segment empty helps with the others. So each thread works through one contiguous
-/// run of slots (the same run, give or take, step after step: it stays in that thread's
-/// cache), the two meet wherever the work splits evenly, whatever its distribution, and
-/// when one of them is held up (another process on its core) the other does more. Every
-/// chunk is taken exactly once, by one thread.
-class ChunkClaims {
-public:
-  /// Segment s is the chunks [bounds[s], bounds[s + 1]). Not while a loop is claiming.
-  void reset(const std::vector<long>& bounds);
-  int segments() const { return segments_; }
-  /// The next chunk of segment s, from its front or its back; -1 when it is empty.
-  long claim(int s, bool fromFront);
-
-  /// One thread's walk through the chunks: its own segment (rank / 2, from the front for
-  /// an even rank, the back for an odd one), then the others from their fronts.
-  class Cursor {
-  public:
-    Cursor(ChunkClaims& claims, int rank)
-      : claims_(claims)
-      , first_(claims.segments() > 0 ? (rank / 2) % claims.segments() : 0)
-      , front_(rank % 2 == 0)
-    {
-    }
-    /// Claims the next chunk (chunk()); false when there is none left anywhere.
-    bool next()
-    {
-      const int segments = claims_.segments();
-      while (k_ < segments) {
-        const long c = claims_.claim((first_ + k_) % segments, k_ == 0 ? front_ : true);
-        if (c >= 0) {
-          chunk_ = c;
-          return true;
-        }
-        ++k_;
-      }
-      return false;
-    }
-    long chunk() const { return chunk_; }
-
-  private:
-    ChunkClaims& claims_;
-    int first_;
-    bool front_;
-    int k_ = 0;
-    long chunk_ = -1;
-  };
-
-private:
-  // Per segment, the next chunk from the front (low 32 bits) and one past the next from
-  // the back (high 32 bits), changed together by compare-and-swap; one cache line each.
-  struct alignas(64) Ends {
-    std::atomic<std::uint64_t> ends{ 0 };
-  };
-  std::unique_ptr<Ends[]> ends_;
-  int capacity_ = 0;
-  int segments_ = 0;
-};
 
 class CpuBackend final : public Backend {
 public:
@@ -133,7 +70,6 @@ private:
   // (CpuBackend.cpp), and the ranges of blocks and chunks each thread takes this step.
   std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_;
   std::vector<long> pairRanges_, gatherRanges_;
-  ChunkClaims pairClaims_, gatherClaims_;
   // run() did the next step's kick and drift in the last gather (and whether that made the
   // neighbour list stale): the step starts at the wall control.
   bool drifted_ = false;
