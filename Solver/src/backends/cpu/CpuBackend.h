@@ -11,6 +11,11 @@
 // in slot order -> clock. Velocity Verlet; velocity-dependent forces use the half-step
 // velocity. No floating-point atomics, fixed summation order. It steps the Model's own
 // particle arrays in place. SI units throughout.
+//
+// Threads: the pair loop and the gather give each thread one range of equal work, as the
+// last step counted it (balancedRanges below), and within one run() the gather also does
+// the next step's half kick and drift of the particles it has just gathered (the last step
+// of a run does not, so the model holds whole steps between runs). Neither changes a bit.
 #pragma once
 
 #include "backends/ContactState.h"
