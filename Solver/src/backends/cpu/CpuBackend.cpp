@@ -247,11 +247,11 @@ std::string CpuBackend::path() const
 void CpuBackend::run(std::int64_t steps)
 {
   // Within one run(), each step's gather also does the next step's opening half kick and
-  // drift, particle by particle, right after the particle's closing half kick (the same
-  // operations on the same values: a particle's kick and drift read only its own state,
-  // which its gather has just finished; the thread that gathered a particle moves it, while
-  // it is in that thread's cache, and one pass and one fork/join per step are saved). The
-  // last step of a run does not, so between runs the state is that of whole steps.
+  // drift of each chunk of particles right after gathering it (the same operations on the
+  // same values: a particle's kick and drift read only its own state, which its gather has
+  // just finished; the thread that gathered a chunk moves it while it is in that thread's
+  // cache, and one pass and one fork/join per step are saved). The last step of a run does
+  // not, so between runs the state is that of whole steps.
   for (std::int64_t s = 0; s < steps; ++s) {
     step(s + 1 == steps);
   }
