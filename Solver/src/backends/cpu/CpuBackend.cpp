@@ -33,6 +33,24 @@ int availableThreads()
 #endif
 }
 
+/// This thread's rank in the current team, and the team's size (0 and 1 outside one).
+int teamRank()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+int teamSize()
+{
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 /// dem::minimumImage for the hot loops: a box without periodic axes (and not a 2D section)
 /// takes the plain difference, decided once.
 class MinimumImage {
@@ -56,12 +74,87 @@ private:
 
 Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumImage(d, a, b); }
 
+/// The opening half kick of velocity Verlet and the drift of particle i, with the periodic
+/// wrap: true when it has moved half the skin (limit2 is its square) since the neighbour
+/// list was built. It reads and writes particle i's state only. (All by value or raw
+/// pointer, as the hot loops read the arrays: CpuBackend::computeForces.)
+[[gnu::always_inline]] inline bool kickAndDrift(std::size_t i, Vec3* position, Vec3* velocity, Vec3* spin,
+  Vec3* displacement, const Vec3* force, const Vec3* torque, const Vec3* positionAtBuild,
+  const double* inverseMass, const double* inverseInertia, double dt, double half, bool planar,
+  bool anyPeriodic, const Domain& d, const MinimumImage& separationOf, double limit2)
+{
+  // A fixed particle is kinematic: forces do not change its velocity (inverse mass
+  // 0), but it moves with the velocity it was given (at rest unless prescribed).
+  velocity[i] += (half * inverseMass[i]) * force[i];
+  spin[i] += (half * inverseInertia[i]) * torque[i];
+  if (planar) {
+    velocity[i].z() = 0.0;
+    spin[i].x() = 0.0;
+    spin[i].y() = 0.0;
+  }
+  const Vec3 move = dt * velocity[i];
+  position[i] += move;
+  displacement[i] += move;
+  for (int k = 0; anyPeriodic && k < 3; ++k) {
+    if (d.periodic[k]) {
+      const double lo = d.origin[k];
+      const double length = d.size[k];
+      if (position[i][k] < lo) {
+        position[i][k] += length;
+      } else if (position[i][k] >= lo + length) {
+        position[i][k] -= length;
+      }
+    }
+  }
+  return separationOf(positionAtBuild[i], position[i]).squaredNorm() > limit2;
+}
+
 // kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
 /// stack) and evaluates them at the block's end, while its arrays are still in cache.
 constexpr long kPairBlock = 256;
+
+/// Particles per chunk of the gather (the unit of its cost count and of its partition).
+constexpr long kGatherChunk = 256;
+
+// The work of a block of pairs and of a chunk of the gather, counted as the loops run, in
+// rough relative units, fitted to the two threads' times on the settled 100k pack (where
+// the contacts sit in the lower slots): a pair's test 2 and a touching pair 9 more (with
+// AVX2 about 40 and 160 instructions); in the gather a particle 4, each entry of its pair
+// list that it walks 3, a wall entry 4, and its kick and drift for the next step 1. Only
+// the ratios matter, and only for speed (balancedRanges).
+constexpr std::uint32_t kPairCost = 2;
+constexpr std::uint32_t kTouchingPairCost = 9;
+constexpr std::uint32_t kParticleCost = 4;
+constexpr std::uint32_t kEntryCost = 3;
+constexpr std::uint32_t kWallEntryCost = 4;
+constexpr std::uint32_t kDriftCost = 1; // a particle's kick and drift, done in the gather
 } // namespace
+
+void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds)
+{
+  const long chunks = static_cast<long>(cost.size());
+  parts = std::max(parts, 1);
+  bounds.assign(static_cast<std::size_t>(parts) + 1, chunks);
+  bounds[0] = 0;
+  std::uint64_t total = 0;
+  for (const std::uint32_t c : cost) {
+    total += c;
+  }
+  // Part p ends at the first chunk boundary where the running cost reaches p / parts of
+  // the total (integers: the same ranges on every machine).
+  std::uint64_t sum = 0;
+  long c = 0;
+  for (int part = 1; part < parts; ++part) {
+    const std::uint64_t target = total * static_cast<std::uint64_t>(part) / static_cast<std::uint64_t>(parts);
+    while (c < chunks && sum + cost[static_cast<std::size_t>(c)] / 2 < target) {
+      sum += cost[static_cast<std::size_t>(c)];
+      ++c;
+    }
+    bounds[static_cast<std::size_t>(part)] = c;
+  }
+}
 
 #if ROCKDEM_AVX2_KERNEL
 bool touchingPairsAvx2Enabled()
@@ -153,8 +246,14 @@ std::string CpuBackend::path() const
 
 void CpuBackend::run(std::int64_t steps)
 {
+  // Within one run(), each step's gather also does the next step's opening half kick and
+  // drift of each chunk of particles right after gathering it (the same operations on the
+  // same values: a particle's kick and drift read only its own state, which its gather has
+  // just finished; the thread that gathered a chunk moves it while it is in that thread's
+  // cache, and one pass and one fork/join per step are saved). The last step of a run does
+  // not, so between runs the state is that of whole steps.
   for (std::int64_t s = 0; s < steps; ++s) {
-    step();
+    step(s + 1 == steps);
   }
 }
 
@@ -469,7 +568,7 @@ bool CpuBackend::wallsMoved() const
 // ---------------------------------------------------------------------------------------
 // Forces
 
-void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
+void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool driftNext)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -542,8 +641,18 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
     pairLive[k] = 0;
   };
   const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long b = 0; b < blocks; ++b) {
+  // Each thread takes one contiguous range of blocks, of about equal work as the blocks'
+  // work at the last step weighs it (a block new since a rebuild counts its pairs as not
+  // touching): equal shares of the pairs gave the thread holding the contact-rich part of
+  // a pack most of the work (balancedRanges).
+  const int parts = im.parallel ? im.threads : 1;
+  pairBlockCost_.resize(static_cast<std::size_t>(blocks), kPairBlock * kPairCost);
+  balancedRanges(pairBlockCost_, parts, pairRanges_);
+  std::uint32_t* const blockCost = pairBlockCost_.data();
+  const long* const pairRanges = pairRanges_.data();
+#pragma omp parallel num_threads(im.threads) if (im.parallel)
+  for (int part = teamRank(); part < parts; part += teamSize())
+  for (long b = pairRanges[part]; b < pairRanges[part + 1]; ++b) {
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
 #if ROCKDEM_AVX2_KERNEL
     if (simd) {
@@ -556,9 +665,11 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         endContact(ended[e]);
       }
       touchingPairsAvx2(arrays, list, listed);
+      blockCost[b] = static_cast<std::uint32_t>((blockEnd - b * kPairBlock) * kPairCost + listed * kTouchingPairCost);
       continue;
     }
 #endif
+    std::uint32_t evaluated = 0;
     for (long k = b * kPairBlock; k < blockEnd; ++k) {
       const std::uint32_t i = pairI[k];
       const std::uint32_t j = pairJ[k];
@@ -583,6 +694,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         inverseMass[i], inverseMass[j], c.normalStiffness, c.normalDamping, c.tangentialStiffness };
       const TouchingPairResult<Vec3> r =
         touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
+      ++evaluated;
       const double fn = r.normalForce;
       Vec3 torqueI = r.torqueI;
       Vec3 torqueJ = r.torqueJ;
@@ -608,6 +720,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
         touching[j] = 1;
       }
     }
+    blockCost[b] = static_cast<std::uint32_t>((blockEnd - b * kPairBlock) * kPairCost + evaluated * kTouchingPairCost);
   }
 
   // 2. Bonds, each once (state updated and failure checked only on a real step).
@@ -690,75 +803,124 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick)
   const double* const mass = p.mass.data();
   const std::uint32_t* const adjacencyStart = im.adjacencyStart.data();
   const std::uint32_t* const adjacency = im.adjacency.data();
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    Vec3 force = mass[i] * gravity;
-    Vec3 torque = Vec3::Zero();
-    // Without a touching pair (none has a non-zero normal force) the list adds nothing.
-    const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
-    touching[i] = 0;
-    for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
-      const std::uint32_t entry = adjacency[e];
-      const std::uint32_t k = entry >> 1;
-      if (pairNormal[k] == 0.0) {
-        continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
-      }
-      if (entry & 1u) {
-        force -= pairForce[k];
-        torque += pairTorqueJ[k];
-      } else {
-        force += pairForce[k];
-        torque += pairTorqueI[k];
-      }
-    }
-    for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {
-      wallContact(e, i, force, torque);
-    }
-    if (anyBonds) {
-      for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
-        const std::size_t b = im.bondAdjacency[e] >> 1;
-        if (model_.bonds.broken(b)) {
-          continue;
+  // Each thread takes one contiguous range of chunks of about equal work, as the pair loop
+  // takes its blocks (and, with driftNext, moves the particles it gathered).
+  const long chunks = (count + kGatherChunk - 1) / kGatherChunk;
+  gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kParticleCost);
+  balancedRanges(gatherChunkCost_, parts, gatherRanges_);
+  std::uint32_t* const chunkCost = gatherChunkCost_.data();
+  const long* const gatherRanges = gatherRanges_.data();
+  // The particle arrays the gather writes, through raw pointers (as in the pair loop).
+  Vec3* const movePosition = p.position.data();
+  Vec3* const moveVelocity = p.velocity.data();
+  Vec3* const moveSpin = p.angularVelocity.data();
+  Vec3* const moveDisplacement = p.displacement.data();
+  Vec3* const netForce = p.force.data();
+  Vec3* const netTorque = p.torque.data();
+  Vec3* const undampedForce = im.undampedForce.data();
+  const Vec3* const externalForce = im.externalForce.data();
+  const std::uint32_t* const wallStart = im.wallStart.data();
+  const Vec3* const positionAtBuild = im.positionAtBuild.data();
+  const double* const inverseInertia = im.inverseInertia.data();
+  const double stepDt = timestep_;
+  // With driftNext, the next step's kick and drift (step(), run()).
+  bool stale = false; // the drift made the neighbour list stale
+  const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
+  const double skinLimit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
+  const double limit2 = skinLimit * skinLimit;
+#pragma omp parallel num_threads(im.threads) if (im.parallel) reduction(|| : stale)
+  for (int part = teamRank(); part < parts; part += teamSize())
+  for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
+    const long chunkBegin = chunk * kGatherChunk;
+    const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
+    std::uint32_t walked = 0; // entries of the pair lists walked
+    for (long li = chunkBegin; li < chunkEnd; ++li) {
+      const std::size_t i = static_cast<std::size_t>(li);
+      Vec3 force = mass[i] * gravity;
+      Vec3 torque = Vec3::Zero();
+      // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+      const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
+      touching[i] = 0;
+      walked += pairEnd - adjacencyStart[i];
+      for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
+        const std::uint32_t entry = adjacency[e];
+        const std::uint32_t k = entry >> 1;
+        if (pairNormal[k] == 0.0) {
+          continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
         }
-        if (im.bondAdjacency[e] & 1u) {
-          force -= im.bondForce[b];
-          torque += im.bondTorqueJ[b];
+        if (entry & 1u) {
+          force -= pairForce[k];
+          torque += pairTorqueJ[k];
         } else {
-          force += im.bondForce[b];
-          torque += im.bondTorqueI[b];
+          force += pairForce[k];
+          torque += pairTorqueI[k];
+        }
+      }
+      for (std::size_t e = wallStart[i]; e < wallStart[i + 1]; ++e) {
+        wallContact(e, i, force, torque);
+      }
+      if (anyBonds) {
+        for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
+          const std::size_t b = im.bondAdjacency[e] >> 1;
+          if (model_.bonds.broken(b)) {
+            continue;
+          }
+          if (im.bondAdjacency[e] & 1u) {
+            force -= im.bondForce[b];
+            torque += im.bondTorqueJ[b];
+          } else {
+            force += im.bondForce[b];
+            torque += im.bondTorqueI[b];
+          }
+        }
+      }
+      if (anyExternal) {
+        force += externalForce[i];
+      }
+      if (planar) {
+        force.z() = 0.0;
+        torque.x() = 0.0;
+        torque.y() = 0.0;
+      }
+      undampedForce[i] = force;
+      Vec3 damped = force;
+      Vec3 dampedTorque = torque;
+      if (alpha > 0.0) {
+        for (int c = 0; c < 3; ++c) {
+          damped[c] = cundallDamping(force[c], moveVelocity[i][c], alpha);
+          dampedTorque[c] = cundallDamping(torque[c], moveSpin[i][c], alpha);
+        }
+      }
+      netForce[i] = damped;
+      netTorque[i] = dampedTorque;
+      if (closingKick && inverseMass[i] != 0.0) {
+        moveVelocity[i] += (half * inverseMass[i]) * damped;
+        moveSpin[i] += (half * inverseInertia[i]) * dampedTorque;
+        if (planar) {
+          moveVelocity[i].z() = 0.0;
+          moveSpin[i].x() = 0.0;
+          moveSpin[i].y() = 0.0;
         }
       }
     }
-    if (anyExternal) {
-      force += im.externalForce[i];
-    }
-    if (planar) {
-      force.z() = 0.0;
-      torque.x() = 0.0;
-      torque.y() = 0.0;
-    }
-    im.undampedForce[i] = force;
-    Vec3 damped = force;
-    Vec3 dampedTorque = torque;
-    if (alpha > 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        damped[c] = cundallDamping(force[c], p.velocity[i][c], alpha);
-        dampedTorque[c] = cundallDamping(torque[c], p.angularVelocity[i][c], alpha);
+    if (driftNext) {
+      // The chunk's kick and drift, while it is in this thread's cache (a loop of its own:
+      // inside the gather's it took 13 % more instructions, for want of registers).
+      for (long li = chunkBegin; li < chunkEnd; ++li) {
+        if (kickAndDrift(static_cast<std::size_t>(li), movePosition, moveVelocity, moveSpin, moveDisplacement,
+                         netForce, netTorque, positionAtBuild, inverseMass, inverseInertia, stepDt, half, planar,
+                         anyPeriodic, d, separationOf, limit2)) {
+          stale = true;
+        }
       }
     }
-    p.force[i] = damped;
-    p.torque[i] = dampedTorque;
-    if (closingKick && im.inverseMass[i] != 0.0) {
-      p.velocity[i] += (half * im.inverseMass[i]) * damped;
-      p.angularVelocity[i] += (half * im.inverseInertia[i]) * dampedTorque;
-      if (planar) {
-        p.velocity[i].z() = 0.0;
-        p.angularVelocity[i].x() = 0.0;
-        p.angularVelocity[i].y() = 0.0;
-      }
-    }
+    const std::uint64_t bondEntries = anyBonds ? im.bondAdjacencyStart[chunkEnd] - im.bondAdjacencyStart[chunkBegin] : 0;
+    chunkCost[chunk] = static_cast<std::uint32_t>(
+      (chunkEnd - chunkBegin) * (kParticleCost + (driftNext ? kDriftCost : 0)) + walked * kEntryCost +
+      (wallStart[chunkEnd] - wallStart[chunkBegin]) * kWallEntryCost + bondEntries * kEntryCost);
   }
+  drifted_ = driftNext;
+  driftedStale_ = driftNext && stale;
 
   // 5. Wall reactions: one pass over the wall entries in (slot, wall) order, so each
   // wall's sum runs in slot order (deterministic).
@@ -892,7 +1054,7 @@ void CpuBackend::computeBondForces(bool incrementState)
 // ---------------------------------------------------------------------------------------
 // Stepping
 
-void CpuBackend::step()
+void CpuBackend::step(bool last)
 {
   ContactState& im = state_;
   Particles& p = model_.particles;
@@ -904,12 +1066,12 @@ void CpuBackend::step()
   const double limit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = limit * limit;
   const MinimumImage separationOf(d);
-  const std::array<bool, 3> periodic = d.periodic;
-  const bool anyPeriodic = periodic[0] || periodic[1] || periodic[2];
+  const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
 
   // Half kick with the forces of the last step, then drift; note whether any particle
-  // has moved half the skin since the neighbour list was built.
-  bool stale = false;
+  // has moved half the skin since the neighbour list was built. Done already where the
+  // last step's gather did it (run()).
+  bool stale = driftedStale_;
   Vec3* const position = p.position.data(); // raw pointers, as in computeForces
   Vec3* const velocity = p.velocity.data();
   Vec3* const spin = p.angularVelocity.data();
@@ -919,36 +1081,18 @@ void CpuBackend::step()
   const Vec3* const positionAtBuild = im.positionAtBuild.data();
   const double* const inverseMass = im.inverseMass.data();
   const double* const inverseInertia = im.inverseInertia.data();
+  if (!drifted_) {
 #pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-  for (long li = 0; li < count; ++li) {
-    const std::size_t i = static_cast<std::size_t>(li);
-    // A fixed particle is kinematic: forces do not change its velocity (inverse mass
-    // 0), but it moves with the velocity it was given (at rest unless prescribed).
-    velocity[i] += (half * inverseMass[i]) * force[i];
-    spin[i] += (half * inverseInertia[i]) * torque[i];
-    if (planar) {
-      velocity[i].z() = 0.0;
-      spin[i].x() = 0.0;
-      spin[i].y() = 0.0;
-    }
-    const Vec3 move = dt * velocity[i];
-    position[i] += move;
-    displacement[i] += move;
-    for (int k = 0; anyPeriodic && k < 3; ++k) {
-      if (periodic[k]) {
-        const double lo = d.origin[k];
-        const double length = d.size[k];
-        if (position[i][k] < lo) {
-          position[i][k] += length;
-        } else if (position[i][k] >= lo + length) {
-          position[i][k] -= length;
-        }
+    for (long li = 0; li < count; ++li) {
+      if (kickAndDrift(static_cast<std::size_t>(li), position, velocity, spin, displacement, force, torque,
+                       positionAtBuild, inverseMass, inverseInertia, dt, half, planar, anyPeriodic, d,
+                       separationOf, limit2)) {
+        stale = true;
       }
     }
-    if (separationOf(positionAtBuild[i], position[i]).squaredNorm() > limit2) {
-      stale = true;
-    }
   }
+  drifted_ = false;
+  driftedStale_ = false;
   controlWalls(model_, timestep_, im.smallestRadius);
   for (Wall& wall : model_.walls) {
     wall.position += wall.velocity * dt;
@@ -960,8 +1104,9 @@ void CpuBackend::step()
   } else if (wallsMoved()) {
     rebuildWallContacts(true);
   }
-  // New forces, then the second half kick (in the same pass).
-  computeForces(true, true);
+  // New forces, then the second half kick (in the same pass), and unless this is the
+  // run's last step, the next step's half kick and drift.
+  computeForces(true, true, !last);
   model_.clock.step += 1;
   model_.clock.time += dt;
 }

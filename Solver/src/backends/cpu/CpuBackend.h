@@ -11,6 +11,11 @@
 // in slot order -> clock. Velocity Verlet; velocity-dependent forces use the half-step
 // velocity. No floating-point atomics, fixed summation order. It steps the Model's own
 // particle arrays in place. SI units throughout.
+//
+// Threads: the pair loop and the gather give each thread one range of equal work, as the
+// last step counted it (balancedRanges below), and within one run() the gather also does
+// the next step's half kick and drift of the particles it has just gathered (the last step
+// of a run does not, so the model holds whole steps between runs). Neither changes a bit.
 #pragma once
 
 #include "backends/ContactState.h"
@@ -20,8 +25,17 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace dem {
+
+/// Splits the chunks [0, cost.size()) into `parts` contiguous ranges of about equal total
+/// cost: part p is [bounds[p], bounds[p + 1]). The CPU backend splits the blocks of its pair
+/// loop and the chunks of its gather so, one range per thread, weighed by their work at the
+/// previous step, so that the thread holding the contact-rich part of a pack does not do
+/// most of the work while the others wait (which thread computes a result never changes a
+/// bit of it).
+void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds);
 
 class CpuBackend final : public Backend {
 public:
@@ -45,8 +59,8 @@ private:
   void decideParallel();
   void buildBondLists();
   void computeBondForces(bool incrementState);
-  void computeForces(bool incrementHistory, bool closingKick);
-  void step();
+  void computeForces(bool incrementHistory, bool closingKick, bool driftNext = false);
+  void step(bool last);
 
   Model& model_;
   ContactModel contactModel_;
@@ -56,6 +70,15 @@ private:
   // backend is made); the scalar loop otherwise. The same bits either way.
   bool simd_ = false;
   ContactState state_;
+  // The work of each block of the pair loop (kPairBlock pairs) and of each chunk of the
+  // gather (kGatherChunk particles) at its last evaluation, in rough instruction units
+  // (CpuBackend.cpp), and the ranges of blocks and chunks each thread takes this step.
+  std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_;
+  std::vector<long> pairRanges_, gatherRanges_;
+  // run() did the next step's kick and drift in the last gather (and whether that made the
+  // neighbour list stale): the step starts at the wall control.
+  bool drifted_ = false;
+  bool driftedStale_ = false;
 };
 
 } // namespace dem
