@@ -7,6 +7,9 @@
 
 #include "dem/Model.h"
 #include "dem/Simulation.h"
+#include "StateFixtures.h" // sameBits, firstDifference
+using dem::statetest::firstDifference;
+using dem::statetest::sameBits;
 
 #include <gtest/gtest.h>
 
@@ -19,12 +22,6 @@
 using namespace dem;
 
 namespace {
-
-template <class T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
 
 std::uint64_t rangeCost(const std::vector<std::uint32_t>& cost, long first, long last)
 {
@@ -189,17 +186,8 @@ TEST(CpuThreads, BatchesOfAnyLengthGiveTheSameBits)
     }
     SCOPED_TRACE(std::to_string(threads) + " threads");
     EXPECT_EQ(whole.clock.step, cut.clock.step);
-    EXPECT_TRUE(sameBits(whole.particles.position, cut.particles.position));
-    EXPECT_TRUE(sameBits(whole.particles.velocity, cut.particles.velocity));
-    EXPECT_TRUE(sameBits(whole.particles.angularVelocity, cut.particles.angularVelocity));
-    EXPECT_TRUE(sameBits(whole.particles.displacement, cut.particles.displacement));
-    EXPECT_TRUE(sameBits(whole.particles.force, cut.particles.force));
-    EXPECT_TRUE(sameBits(whole.contacts.shearSpring, cut.contacts.shearSpring));
+    EXPECT_EQ(firstDifference(whole, cut), "");
     EXPECT_EQ(whole.clock.step, fresh.clock.step);
-    EXPECT_TRUE(sameBits(whole.particles.position, fresh.particles.position));
-    EXPECT_TRUE(sameBits(whole.particles.velocity, fresh.particles.velocity));
-    EXPECT_TRUE(sameBits(whole.particles.angularVelocity, fresh.particles.angularVelocity));
-    EXPECT_TRUE(sameBits(whole.particles.force, fresh.particles.force));
-    EXPECT_TRUE(sameBits(whole.contacts.shearSpring, fresh.contacts.shearSpring));
+    EXPECT_EQ(firstDifference(whole, fresh), "");
   }
 }
