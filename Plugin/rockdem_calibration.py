@@ -766,6 +766,12 @@ def _ucs_strain(target):
     return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
 
 
+def envelope_strain(target):
+    """Max Strain of the envelope stage's triaxial tests: 8 x UCS / E, in [0.005, 0.03]
+    (0.005 without both)."""
+    return min(0.03, max(0.005, 8.0 * (target.get("ucs") or 0.0) / (target.get("youngs_modulus") or 1e300)))
+
+
 def _elastic_strain(target):
     """Max Strain of the elastic compression (stiffness stage): 1/4 of UCS / E, in [1e-4, 2e-3]."""
     ucs_t, e_t = target.get("ucs"), target.get("youngs_modulus")
@@ -1100,7 +1106,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             f_chain = LeverChain(ENVELOPE_LEVERS, target["friction_angle"], p, spent)
             confining = list(target["confining_stresses"])
             while bench.tests + len(confining) <= max_tests:
-                results, coh, phi = bench.triaxial(p, confining, min(0.03, max(0.005, 8.0 * (ucs_t or 0.0) / (e_t or 1e300))))
+                results, coh, phi = bench.triaxial(p, confining, envelope_strain(target))
                 histories["triaxial"] = results
                 errs = report("envelope", "triaxial x %d" % len(confining),
                               {"friction_angle": phi, "cohesion": coh,
