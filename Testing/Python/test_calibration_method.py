@@ -494,4 +494,23 @@ try:
     c.check(False, "an unknown property in the parameter file was accepted")
 except cal.CalibrationError as e:
     c.check("cement.BondModulos" in str(e) and "BondModulus" in str(e), "unknown property named: %s" % e)
+
+# --- 5. the shipped parameter files (Data/calibrated/) -----------------------------------
+# every one loads (format, version, property names), is listed in that folder's README,
+# and a file calibrated on its tensile strength carries the rate its tensile test ran at
+# (the rate tension_strain_per_step gives for its target, recipe and Bond Modulus)
+data = os.path.join(os.path.dirname(os.path.dirname(HERE)), "Data", "calibrated")
+with open(os.path.join(data, "README.md")) as f:
+    listing = f.read()
+for name in sorted(n for n in os.listdir(data) if n.endswith(".json")):
+    doc = cal.load_parameters(os.path.join(data, name))
+    ok = "`%s`" % name in listing
+    what = "listed in the README"
+    if "tension_strain_per_step" in doc["test"]:
+        t = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
+        rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]), doc["parameters"]["BondModulus"])
+        ok = ok and rate == doc["test"]["tension_strain_per_step"] and doc["converged"] and \
+            all(abs(doc["errors"][k]) <= doc["tolerances"][k] for k in t if k in doc["tolerances"] and k in doc["errors"])
+        what += ", converged within its tolerances, tensile test at %.3g per step" % rate
+    c.check(ok, "Data/calibrated/%s: loads (cement %s), %s" % (name, sorted(doc["cement"]), what))
 c.finish()
