@@ -805,8 +805,9 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
     calibration's recipe, cemented with the calibrated parameters, tested as the
     calibration measures each property: Poisson's ratio on the elastic compression (and E
     there too when the target has no UCS), E and UCS on the compression to failure, the
-    tensile strength by the target's tensile test. Returns a list of {seed, measured,
-    errors} (errors against the calibration's target)."""
+    tensile strength by the target's tensile test, the friction angle (and cohesion) by
+    the envelope stage's triaxial tests at the target's confining stresses. Returns a list
+    of {seed, measured, errors} (errors against the calibration's target)."""
     doc = load_parameters(parameters) if isinstance(parameters, str) else parameters
     target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
     out = []
@@ -824,6 +825,9 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
                 m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "failure_poissons_ratio": rc["nu"]})
             if "tensile_strength" in target:
                 m["tensile_strength"] = bench.tension(doc["parameters"], _tension_strain(target))["tensile_strength"]
+            if "friction_angle" in target:
+                _, m["cohesion"], m["friction_angle"] = bench.triaxial(
+                    doc["parameters"], target["confining_stresses"], envelope_strain(target))
             rec = {"seed": int(seed), "measured": m, "errors": _errors(target, m),
                    "bonded_coordination": bench.coordination, "porosity": bench.porosity}
         finally:

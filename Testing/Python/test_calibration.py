@@ -9,7 +9,8 @@ the number of specimen tests bounded (<= 12); one progress record per test; the 
 (iterations.csv with a row per record, parameters.json that load_parameters reads back);
 the parameter file carries the Bond Range and Moment Contribution (the recipe's here:
 no friction angle, no tensile strength in the target) and rebuilds the calibrated
-specimen (build_specimen: the same bonded coordination, the same seed).
+specimen (build_specimen: the same bonded coordination, the same seed); verify() on a
+fresh seed measures every target the file names, the friction angle too.
 
     pvpython test_calibration.py [OUTPUT_FOLDER]
 """
@@ -63,5 +64,19 @@ pack, cement = rockdem.build_specimen(doc)
 c.check(rockdem.read_only(cement, "Bonds") > 0 and abs(rockdem.read_only(cement, "BondedCoordination")
                                                      - res["bonded_coordination"]) < 1e-12,
         "build_specimen: the same bonded coordination %.4f" % rockdem.read_only(cement, "BondedCoordination"))
+# verify() on a fresh seed checks every target the file names, the friction angle too
+# (the envelope stage's triaxial tests at the target's confining stresses)
+# (two confining stresses; the target's E and UCS set how far the triaxial tests press,
+# 8 x UCS / E, Calibration.md)
+doc_phi = dict(doc, target=dict(doc["target"], friction_angle=45.0, confining_stresses=[0.0, 4e5]),
+               tolerances=dict(doc["tolerances"], friction_angle=3.0))
+t1 = time.time()
+row = rockdem.verify(doc_phi, seeds=(4,))[0]
+c.check(row["seed"] == 4 and set(row["errors"]) == {"youngs_modulus", "ucs", "friction_angle"} and
+        10.0 < row["measured"]["friction_angle"] < 80.0 and row["measured"]["cohesion"] > 0.0 and
+        abs(row["errors"]["friction_angle"] - (row["measured"]["friction_angle"] - 45.0)) < 1e-12,
+        "verify, seed 4, with a friction angle in the target: phi %.1f deg (error %+.1f), cohesion %.3g Pa (%.1f s)"
+        % (row["measured"]["friction_angle"], row["errors"]["friction_angle"], row["measured"]["cohesion"],
+           time.time() - t1))
 print("total %.1f s" % (time.time() - t0))
 c.finish()
