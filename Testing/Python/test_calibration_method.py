@@ -498,7 +498,8 @@ except cal.CalibrationError as e:
 # --- 5. the shipped parameter files (Data/calibrated/) -----------------------------------
 # every one loads (format, version, property names), is listed in that folder's README,
 # and a file calibrated on its tensile strength carries the rate its tensile test ran at
-# (the rate tension_strain_per_step gives for its target, recipe and Bond Modulus)
+# (the rate tension_strain_per_step gives for its target, recipe and Bond Modulus) and is
+# either converged or says unreachable for exactly the targets it misses
 data = os.path.join(os.path.dirname(os.path.dirname(HERE)), "Data", "calibrated")
 with open(os.path.join(data, "README.md")) as f:
     listing = f.read()
@@ -509,8 +510,12 @@ for name in sorted(n for n in os.listdir(data) if n.endswith(".json")):
     if "tension_strain_per_step" in doc["test"]:
         t = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
         rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]), doc["parameters"]["BondModulus"])
-        ok = ok and rate == doc["test"]["tension_strain_per_step"] and doc["converged"] and \
-            all(abs(doc["errors"][k]) <= doc["tolerances"][k] for k in t if k in doc["tolerances"] and k in doc["errors"])
-        what += ", converged within its tolerances, tensile test at %.3g per step" % rate
+        outside = sorted(k for k in t if k in doc["tolerances"] and k in doc["errors"]
+                         and abs(doc["errors"][k]) > doc["tolerances"][k])
+        ok = ok and rate == doc["test"]["tension_strain_per_step"] and \
+            (doc["converged"] if not outside else (not doc["converged"] and outside == sorted(doc["unreachable"])))
+        what += ", tensile test at %.3g per step, %s" % (
+            rate, "converged within its tolerances" if not outside else
+            "not converged, outside its tolerances only on what it reports unreachable (%s)" % ", ".join(outside))
     c.check(ok, "Data/calibrated/%s: loads (cement %s), %s" % (name, sorted(doc["cement"]), what))
 c.finish()
