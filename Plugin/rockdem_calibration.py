@@ -1046,7 +1046,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 # at UCS alone, did not move, the ratio's lever raised q and UCS left its
                 # band, +5.8 % at test 20; Calibration.md.)
                 middle = False
-                if ucs_t and st_t and errs["ucs"] * errs["tensile_strength"] > 0.0:
+                if "ucs" in errs and "tensile_strength" in errs and errs["ucs"] * errs["tensile_strength"] > 0.0:
                     ratio_err = math.log((m["ucs"] / m["tensile_strength"]) / (ucs_t / st_t))
                     middle = abs(ratio_err) < MIDDLE_FRACTION * (math.log1p(tol["ucs"]) +
                                                                  math.log1p(tol["tensile_strength"]))
