@@ -1195,8 +1195,12 @@ def write_outputs(result, folder):
     os.makedirs(folder, exist_ok=True)
     _write_csv(os.path.join(folder, "iterations.csv"), ITERATION_COLUMNS, iteration_rows(result["iterations"]))
     save_parameters(os.path.join(folder, "parameters.json"), result)
-    for name in ("ucs", "tension"):
-        h = result["histories"].get(name)
+    # the final tests' histories: ucs_history.csv, tension_history.csv, and one
+    # triaxial_<confining in MPa>MPa_history.csv per test of the latest envelope
+    named = [(name, result["histories"].get(name)) for name in ("ucs", "tension")]
+    named += [("triaxial_%gMPa" % (r["confining"] / 1e6), r.get("history"))
+              for r in result["histories"].get("triaxial") or []]
+    for name, h in named:
         if h:
             cols = list(h.keys())
             n = len(h[cols[0]])
@@ -1217,6 +1221,11 @@ def write_outputs(result, folder):
         h = result["histories"].get(name)
         if h and "Axial Stress (Pa)" in h and axis in h:
             ax.plot(100.0 * h[axis], h["Axial Stress (Pa)"] / 1e6, label=label)
+    for k, r in enumerate(result["histories"].get("triaxial") or []):
+        h = r.get("history")
+        if r["confining"] > 0 and h and "Axial Stress (Pa)" in h and "Strain Z" in h:
+            ax.plot(100.0 * h["Strain Z"], h["Axial Stress (Pa)"] / 1e6, lw=1.0, color="C%d" % (k + 2),
+                    label="triaxial, confining %g MPa" % (r["confining"] / 1e6))
     ax.axhline(result["target"].get("ucs", float("nan")) / 1e6, ls="--", color="C0", lw=0.8, label="target UCS")
     if "tensile_strength" in result["target"]:
         # the Brazilian stress is drawn positive (the platens push), the direct pull negative

@@ -5,7 +5,7 @@
 
 --parameters runs the same workflow on a calibrated rock: the pack and the cement come from
 a calibration's parameter file (rockdem.calibrate, Documentation/Calibration.md; e.g.
-Data/calibrated/lac_du_bonnet_granite_e_nu_ucs_5000.json), the tests run at the platen strain per step
+Data/calibrated/lac_du_bonnet_granite_5000.json, the granite calibrated on E, nu, UCS, sigma_t and phi), the tests run at the platen strain per step
 and to the Max Strains the calibration used, and the job prints its measurements beside
 the calibration's target.
 

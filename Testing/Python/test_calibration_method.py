@@ -484,6 +484,28 @@ with open(os.path.join(folder, "iterations.csv")) as f:
     lines = f.read().splitlines()
 c.check(len(lines) == 1 + res["tests"] - 0 or len(lines) == 1 + len(res["iterations"]),
         "iterations.csv: a header and one row per test record (%d rows)" % (len(lines) - 1))
+# the final triaxial tests' curves are written and charted with the others (run under
+# pvpython, which has numpy and matplotlib, as ctest does)
+try:
+    import numpy as np
+except ImportError:
+    np = None
+if np is not None:
+    strain = np.linspace(0.0, 0.01, 11)
+    res["histories"]["triaxial"] = [
+        {"confining": s3, "peak_axial": 1e8 + 4 * s3,
+         "history": {"Strain Z": strain, "Axial Stress (Pa)": (1e8 + 4 * s3) * np.sin(strain * 150)}}
+        for s3 in (0.0, 5e6, 1e7)]
+    tri_folder = tempfile.mkdtemp()
+    cal.write_outputs(res, tri_folder)
+    with open(os.path.join(tri_folder, "triaxial_5MPa_history.csv")) as f:
+        tri_rows = f.read().splitlines()
+    c.check(len(tri_rows) == 12 and tri_rows[0] == '"Strain Z","Axial Stress (Pa)"' and
+            os.path.exists(os.path.join(tri_folder, "triaxial_0MPa_history.csv")) and
+            os.path.exists(os.path.join(tri_folder, "triaxial_10MPa_history.csv")) and
+            os.path.getsize(os.path.join(tri_folder, "stress_strain.png")) > 0,
+            "the final triaxial tests' curves: triaxial_<confining>MPa_history.csv (%d rows at 5 MPa) and "
+            "the stress-strain chart" % (len(tri_rows) - 1))
 broken = dict(doc)
 broken["cement"] = dict(doc["cement"], BondModulos=1e9)
 path = os.path.join(folder, "broken.json")
