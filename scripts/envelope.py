@@ -16,14 +16,9 @@ import os
 import sys
 import time
 
-from paraview.simple import LoadPlugin
+from load_calibration import load_calibration
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE_DIR = os.path.dirname(HERE)
-LoadPlugin(os.path.join(SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so"),
-           remote=False, ns=globals())
-sys.path.insert(0, os.path.join(SOURCE_DIR, "Plugin"))
-import rockdem_calibration as cal  # noqa: E402
+cal = load_calibration(globals())
 
 
 def main():
@@ -33,6 +28,9 @@ def main():
     parser.add_argument("--confining", default=None,
                         help="confining stresses, Pa, comma separated (default: the target's or the preset's)")
     args = parser.parse_args()
+    if not os.path.isfile(args.parameters):
+        sys.exit("PARAMETER_FILE = %r: no such file (a parameter file written by rockdem.calibrate, "
+                 "e.g. Data/calibrated/lac_du_bonnet_granite_5000.json)" % args.parameters)
     doc = cal.load_parameters(args.parameters)
     # the file names its rock by the preset's name ("Lac du Bonnet granite"): the preset's
     # file is that name in lower case with underscores

@@ -7,18 +7,12 @@ pulls it with the file's tensile test type at STRAIN_PER_STEP (-, platen strain 
 timestep) and prints the tensile strength (Pa) it reads. Documentation/Calibration.md,
 "The tensile test's rate", has the granite's series.
 """
-import os
 import sys
 import time
 
-from paraview.simple import LoadPlugin
+from load_calibration import load_calibration
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE_DIR = os.path.dirname(HERE)
-LoadPlugin(os.path.join(SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so"),
-           remote=False, ns=globals())
-sys.path.insert(0, os.path.join(SOURCE_DIR, "Plugin"))
-import rockdem_calibration as cal  # noqa: E402
+cal = load_calibration(globals())
 
 
 def main():
