@@ -800,6 +800,25 @@ def test_strains(target):
     return {"elastic": _elastic_strain(target), "ucs": _ucs_strain(target), "tension": _tension_strain(target)}
 
 
+def preset_of(doc):
+    """The preset target of the rock a parameter file names, or {} when it names none. The
+    file's 'rock' is the preset's name ('Lac du Bonnet granite'); its file in Data/rocks/
+    is that name in lower case with underscores (lac_du_bonnet_granite.json)."""
+    name = doc.get("rock")
+    return load_rock(name.lower().replace(" ", "_")) if name else {}
+
+
+def bench_for(doc, target=None, seed=None):
+    """A specimen bench on a parameter file's recipe, as calibrate() builds it (the pack
+    compacted at the file's Bond Modulus), for the target (a validated target dict;
+    default: the file's, with its tolerances); seed: another Random Seed (a fresh
+    specimen), default the file's. Its tests take doc['parameters']; close() it after."""
+    if target is None:
+        target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
+    recipe = validate_recipe(dict(doc["recipe"], **({"seed": int(seed)} if seed is not None else {})))
+    return _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+
+
 def verify(parameters, seeds=(2, 3, 4), progress=None):
     """The calibrated parameters on fresh specimens: for each Random Seed, a new pack of the
     calibration's recipe, cemented with the calibrated parameters, tested as the
@@ -812,8 +831,7 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
     target = validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
     out = []
     for seed in seeds:
-        recipe = validate_recipe(dict(doc["recipe"], seed=int(seed)))
-        bench = _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+        bench = bench_for(doc, target, seed)
         try:
             m = {}
             if "poissons_ratio" in target or ("youngs_modulus" in target and "ucs" not in target):

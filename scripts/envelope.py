@@ -32,9 +32,7 @@ def main():
         sys.exit("PARAMETER_FILE = %r: no such file (a parameter file written by rockdem.calibrate, "
                  "e.g. Data/calibrated/lac_du_bonnet_granite_5000.json)" % args.parameters)
     doc = cal.load_parameters(args.parameters)
-    # the file names its rock by the preset's name ("Lac du Bonnet granite"): the preset's
-    # file is that name in lower case with underscores
-    rock = cal.load_rock(doc["rock"].lower().replace(" ", "_")) if doc.get("rock") else {}
+    rock = cal.preset_of(doc)
     target = dict(doc["target"], tolerances=doc["tolerances"])
     for key in ("friction_angle", "confining_stresses", "ucs", "youngs_modulus"):
         if key not in target and key in rock:
@@ -47,8 +45,7 @@ def main():
     if "confining_stresses" not in target:
         sys.exit("%s: no confining stresses in the file's target or its rock; give --confining" % args.parameters)
     target = cal.validate_target(target)
-    recipe = cal.validate_recipe(dict(doc["recipe"], **({"seed": args.seed} if args.seed is not None else {})))
-    bench = cal._Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+    bench = cal.bench_for(doc, target, args.seed)
     t0 = time.time()
     try:
         results, cohesion, phi = bench.triaxial(doc["parameters"], target["confining_stresses"],
@@ -59,7 +56,7 @@ def main():
         print("confining %.4g Pa: peak axial stress %.4g Pa" % (r["confining"], r["peak_axial"]))
     goal = target.get("friction_angle")
     print("seed %d, %d grains: friction angle %.2f deg%s, cohesion %.4g Pa (%d tests, %.0f s)"
-          % (recipe["seed"], bench.elements, phi,
+          % (bench.recipe["seed"], bench.elements, phi,
              " (target %.1f deg: %+.2f deg)" % (goal, phi - goal) if goal is not None else "",
              cohesion, len(results), time.time() - t0))
 

@@ -25,10 +25,8 @@ def main():
     target = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
     if "tensile_strength" not in target:
         # a file calibrated without sigma_t: the preset's value sets only the Max Strain
-        target = cal.validate_target(dict(target, tensile_strength=cal.load_rock(doc["rock"])["tensile_strength"])
-                                     if doc.get("rock") else dict(target, tensile_strength=1e6))
-    recipe = cal.validate_recipe(doc["recipe"])
-    bench = cal._Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
+        target = cal.validate_target(dict(target, tensile_strength=cal.preset_of(doc).get("tensile_strength", 1e6)))
+    bench = cal.bench_for(doc, target)
     t0 = time.time()
     try:
         r = bench.tension(doc["parameters"], cal._tension_strain(target), strain_per_step=rate)

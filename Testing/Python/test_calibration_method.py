@@ -517,6 +517,11 @@ try:
 except cal.CalibrationError as e:
     c.check("cement.BondModulos" in str(e) and "BondModulus" in str(e), "unknown property named: %s" % e)
 
+# the rock a parameter file names (its 'rock' is the preset's name) is found in Data/rocks/
+c.check(cal.preset_of({"rock": "Lac du Bonnet granite"}) == cal.load_rock("lac_du_bonnet_granite") and
+        cal.preset_of({"rock": "Berea sandstone"})["tensile_strength"] == 1.17e6 and cal.preset_of({"rock": ""}) == {},
+        "preset_of: a parameter file's rock name finds its preset (granite, Berea); no name, no preset")
+
 # --- 5. the shipped parameter files (Data/calibrated/) -----------------------------------
 # every one loads (format, version, property names), is listed in that folder's README,
 # and a file calibrated on its tensile strength carries the rate its tensile test ran at
