@@ -6,7 +6,9 @@ recipe; every iteration only re-cements and re-tests it):
 
 1. stiffness: Young's modulus by the secant method on log E against log Bond Modulus,
    and Poisson's ratio by bracketed secant (regula falsi, Illinois) on nu against
-   log Bond Stiffness Ratio; both from the elastic part of an unconfined compression
+   log Bond Stiffness Ratio, then, once the ratio is at its bracket end and nu still too
+   low, against the Bond Range (NU_LEVERS: nu above about 0.25 needs a bonded
+   coordination near 6); both from the elastic part of an unconfined compression
    (bonds made too strong to break);
 2. strength: UCS by the secant method on log UCS against log Tensile Strength (the bond
    strength scale), and UCS / sigma_t by bracketed secant on the Moment Contribution
@@ -23,7 +25,8 @@ recipe; every iteration only re-cements and re-tests it):
    angle of the Mohr-Coulomb fit of triaxial peaks by bracketed secant on the Bond Range
    ([1, 2]: the friction angle rises with the bonded coordination, Rock.md; a new Bond
    Range re-cements the same compacted pack) (ENVELOPE_LEVERS; the bond Friction Angle,
-   measured flat, is no longer a lever);
+   measured flat, is no longer a lever), unless nu has claimed the Bond Range (then the
+   friction angle is measured and reported as it is);
 
 then again from 1 until every target is within its tolerance, a target is found
 unreachable (every lever of its chain is at a bracket end that misses it on the same
@@ -54,7 +57,7 @@ DEFAULT_TOLERANCES = {"youngs_modulus": 0.05, "poissons_ratio": 0.03, "ucs": 0.0
 TENSILE_TESTS = ("direct", "brazilian")
 
 #: The bracket of each bounded variable (Cement.md ranges, narrowed to what is useful).
-BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 30.0),
+BRACKETS = {"BondStiffnessRatio": (0.01, 2.0), "CohesionRatio": (0.5, 30.0),
             "MomentContribution": (0.0, 1.0), "BondRange": (1.0, 2.0),
             "FrictionAngle": (0.0, 60.0)}
 
@@ -73,7 +76,17 @@ BRACKETS = {"BondStiffnessRatio": (0.05, 2.0), "CohesionRatio": (0.5, 30.0),
 #: 0.12 of q near 4, a step from q 8.8 to halve the ratio went to q 3.0 instead of 4.1.)
 RATIO_LEVERS = (("MomentContribution", -1.8, 0.5), ("CohesionRatio", 0.9, math.log(3.0)))
 #: levers solved in the log of the variable (their slope guess and max step are in log)
-LOG_LEVERS = ("CohesionRatio",)
+LOG_LEVERS = ("CohesionRatio", "BondStiffnessRatio")
+#: Poisson's ratio: the Bond Stiffness Ratio first (nu falls as it rises; slope in log),
+#: then, once the ratio is at its bracket end 0.01 and nu is still too low, the Bond Range:
+#: a pack held by normal and shear springs has nu below about 0.25 at a high bonded
+#: coordination whatever the ratio (0.256 at ratio 0.01, Bond Range 1.4), and a higher nu
+#: only near the rigidity threshold of a central-force network, coordination 6, where the
+#: shear modulus falls faster than the bulk modulus. Measured on 2,000 grains, ratio 0.01
+#: (Calibration.md, "Poisson's ratio above 0.25"): nu 0.256 / 0.305 / 0.357 / 0.371 /
+#: 0.411 at Bond Range 1.4 / 1.2 / 1.1 / 1.05 / 1.0 (bonded coordination 11.1 / 8.7 / 7.4
+#: / 6.6 / 5.9). A Bond Range moved for nu is nu's: the envelope stage leaves it there.
+NU_LEVERS = (("BondStiffnessRatio", -0.05, math.log(3.0)), ("BondRange", -0.4, 0.15))
 #: The measured UCS / sigma_t at Moment Contribution 0 against q = Cohesion / Tensile
 #: (above): RATIO_AT_BETA0 x (q / 4)^RATIO_EXPONENT; calibrate() starts from it when the
 #: target's UCS / sigma_t is above RATIO_AT_BETA0 and the recipe leaves the Moment
@@ -386,7 +399,7 @@ def save_parameters(path, result):
            "tolerances": result["target"]["tolerances"],
            "measured": result["measured"], "errors": result["errors"],
            "converged": result["converged"], "unreachable": result["unreachable"],
-           "tests": result["tests"]}
+           "held_levers": result.get("held_levers", {}), "tests": result["tests"]}
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
         json.dump(doc, f, indent=2, sort_keys=True)
@@ -910,6 +923,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     measured = {}
     unreachable = set()
     spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
+    claimed = {}           # lever -> the property an earlier stage moved it for (nu's Bond Range)
     tested = {}            # p as it was at the latest test
     max_tests = recipe["max_tests"]
 
@@ -955,19 +969,17 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     env_keys = ["friction_angle"] if "friction_angle" in target else []
 
     def stiffness_solvers(match_e=True):
-        lo, hi = BRACKETS["BondStiffnessRatio"]
         return [new_e_solver() if match_e else None,
-                SecantSolver(target["poissons_ratio"], math.log(lo), math.log(hi), slope_guess=-0.05,
-                             max_step=math.log(3.0)) if "poissons_ratio" in target else None]
+                LeverChain(NU_LEVERS, target["poissons_ratio"], p, spent) if "poissons_ratio" in target else None]
 
     def new_e_solver():
         return SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None
 
     def stiffness_step(solvers, m, errs):
-        """Secant updates of Bond Modulus (E) and Bond Stiffness Ratio (nu) from one test,
-        each only where its solver is given (solvers[0] for E, solvers[1] for nu; the
-        strength stage gives no nu solver); True when both are within tolerance (or nu is
-        unreachable)."""
+        """Secant updates of Bond Modulus (E) and of nu's lever (NU_LEVERS: the Bond
+        Stiffness Ratio, then the Bond Range) from one test, each only where its solver is
+        given (solvers[0] for E, solvers[1] the nu LeverChain; the strength stage gives no
+        nu solver); True when both are within tolerance (or nu is unreachable)."""
         e_solver, nu_solver = solvers
         done = True
         if e_solver:
@@ -980,14 +992,13 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                 done = False
         if nu_solver and "poissons_ratio" not in unreachable and "poissons_ratio" in errs and \
                 abs(errs["poissons_ratio"]) > tol["poissons_ratio"]:
-            nu_solver.add(math.log(p["BondStiffnessRatio"]), m["poissons_ratio"])
-            x = nu_solver.next_x()
-            if nu_solver.unreachable:
+            if not nu_solver.update(m["poissons_ratio"]):
                 unreachable.add("poissons_ratio")
             else:
-                p["BondStiffnessRatio"] = math.exp(x)
-                # E depends on the stiffness ratio too: the E secant's kept points belong to
-                # the old ratio (measured at 1e-7 per step: a bracket end kept from ratio 0.4
+                if nu_solver.lever == "BondRange":
+                    claimed["BondRange"] = "poissons_ratio"
+                # E depends on nu's levers too: the E secant's kept points belong to the
+                # old ratio (measured at 1e-7 per step: a bracket end kept from ratio 0.4
                 # held Bond Modulus at 6.9e10 with E 7 % low for 20 tests), so it restarts
                 # from the next test (its first step, slope 1 on log-log, is proportional)
                 if solvers[0] is not None:
@@ -1125,7 +1136,10 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         if env_keys and not (("friction_angle" in unreachable or settled(env_keys)) and tri and
                              tri[-1]["parameters"] == cement_properties(p, recipe)):
             # (run unless phi is settled or unreachable and already measured with p as it is)
-            f_chain = LeverChain(ENVELOPE_LEVERS, target["friction_angle"], p, spent)
+            # (a Bond Range that nu needed is not the envelope's: phi is then reported as it
+            # is, unreachable with its levers held, and nu stays matched)
+            f_chain = LeverChain([lv for lv in ENVELOPE_LEVERS if lv[0] not in claimed],
+                                 target["friction_angle"], p, spent)
             confining = list(target["confining_stresses"])
             while bench.tests + len(confining) <= max_tests:
                 results, coh, phi = bench.triaxial(p, confining, envelope_strain(target))
@@ -1157,7 +1171,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     converged = within(final_errors, all_keys) and not unreachable and not stale
     not_within = sorted(k for k in all_keys if not (k in final_errors and abs(final_errors[k]) <= tol[k]))
     result = {"converged": converged, "unreachable": sorted(unreachable), "not_within": not_within,
-              "stale": stale,
+              "stale": stale, "held_levers": dict(claimed),
               "parameters": dict(p), "pack": dict(bench.pack_props),
               "cement": cement_properties(p, recipe),
               "test": {"strain_per_step": recipe["strain_per_step"], "timestep_safety": recipe["timestep_safety"],

@@ -87,6 +87,8 @@ def main():
           % (target.get("name", args.rock), "CONVERGED" if result["converged"] else "NOT CONVERGED",
              result["tests"], result["seconds"], ", ".join(result["unreachable"]) or "none",
              ", ".join(result["not_within"]) or "none", ", ".join(result["stale"]) or "none"))
+    for lever, prop in sorted(result["held_levers"].items()):
+        print("  %s was moved for %s and held there (not an envelope lever in this calibration)" % (lever, prop))
     c = result["cement"]
     print("calibrated: Bond Modulus %.4g Pa, Bond Stiffness Ratio %.4g, Tensile %.4g Pa, Cohesion %.4g Pa, "
           "Bond Range %.4g, Moment Contribution %.4g" % (c["BondModulus"], c["BondStiffnessRatio"],

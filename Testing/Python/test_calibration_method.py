@@ -371,6 +371,44 @@ c.check(all(ok and n <= 16 for ok, n in rough),
         "rough UCS (+-4 %%), start 1.4 x off: %d of 30 converged, %d-%d tests"
         % (sum(ok for ok, n in rough), min(n for ok, n in rough), max(n for ok, n in rough)))
 
+
+# Poisson's ratio above what the Bond Stiffness Ratio can give: a pack held by normal and
+# shear springs stays below about 0.26 at a high bonded coordination whatever the ratio,
+# and rises towards the rigidity threshold (coordination 6) as the Bond Range falls
+# (measured on 2,000 grains at ratio 0.01: 0.256 at Bond Range 1.4, 0.411 at 1.0;
+# Calibration.md, "Poisson's ratio above 0.25"). The ratio is spent at its bracket end,
+# the Bond Range takes over, and the envelope stage leaves the Bond Range that nu needed.
+class LowCoordinationBench(SyntheticBench):
+    """SyntheticBench with nu = 0.26 - 0.12 log(1 + r) + 0.4 (1.4 - BR)."""
+
+    @staticmethod
+    def props(p):
+        e, nu, ucs, st, phi = SyntheticBench.props(p)
+        nu = 0.26 - 0.12 * math.log(1 + p["BondStiffnessRatio"]) + 0.4 * (1.4 - p["BondRange"])
+        return e, nu, ucs, st, phi
+
+
+r_lo = cal.BRACKETS["BondStiffnessRatio"][0]
+br_nu = 1.4 - (0.38 - (0.26 - 0.12 * math.log(1 + r_lo))) / 0.4
+nu_high = {"youngs_modulus": 20e9, "poissons_ratio": 0.38, "ucs": 50e6, "tensile_strength": 6e6}
+res = cal.calibrate(nu_high, {"max_tests": 40}, bench=LowCoordinationBench())
+c.check(res["converged"] and res["parameters"]["BondStiffnessRatio"] == r_lo and
+        abs(res["parameters"]["BondRange"] - br_nu) < 0.03 / 0.4 and
+        res["held_levers"] == {"BondRange": "poissons_ratio"} and res["tests"] <= 30,
+        "nu = 0.38 (beyond the ratio's reach): converged in %d tests, ratio %g (its bracket end), Bond Range "
+        "%.4g (exact %.4g), held %s, errors %s"
+        % (res["tests"], res["parameters"]["BondStiffnessRatio"], res["parameters"]["BondRange"], br_nu,
+           res["held_levers"], {k: round(v, 4) for k, v in res["errors"].items()}))
+env = dict(nu_high, friction_angle=50.0, confining_stresses=[0.0, 5e6, 1e7])
+res = cal.calibrate(env, {"max_tests": 40}, bench=LowCoordinationBench())
+c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and
+        abs(res["errors"]["poissons_ratio"]) <= 0.03 and abs(res["parameters"]["BondRange"] - br_nu) < 0.03 / 0.4 and
+        abs(res["measured"]["friction_angle"] - phi_of(res["parameters"]["BondRange"])) < 1e-9,
+        "nu = 0.38 with phi = 50 deg: nu kept (error %+.3g) at Bond Range %.4g, phi %.2f deg reported unreachable "
+        "with its lever held by nu, after %d tests"
+        % (res["errors"]["poissons_ratio"], res["parameters"]["BondRange"], res["measured"]["friction_angle"],
+           res["tests"]))
+
 # the tensile test's rate: TENSION_STEPS_TO_PEAK steps to the expected peak (sigma_t / Bond
 # Modulus; 30 x for a Brazilian disc), never faster than the recipe's strain per step
 rec = cal.validate_recipe({"strain_per_step": 1e-7})
