@@ -639,13 +639,16 @@ def contact_law_section(bench, cfg, work, out):
 # a sweep cut short by the clock keeps the most useful runs; --no-new-runs writes the table from the
 # runs in WORK and lists the missing ones.
 FULL["resolution"] = {
-    "sizes": [250, 700, 1500, 3500, 8000], "seeds": [1, 2, 3], "confining": [0.1, 0.2],
+    "sizes": [250, 700, 1500, 3500, 8000, 17000], "seeds": [1, 2, 3], "confining": [0.1, 0.2],
     "strain_per_step": 1e-7, "tension_strain_per_step": 1e-8, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
     "tension_max_strain": 0.0003,
     # (size, seed, kind): "ucs_triaxial" replaces "ucs" where it is planned (the same unconfined test).
     "order": ([(n, s, k) for n in (250, 700, 1500) for s in (1, 2, 3) for k in ("ucs_triaxial", "tension")]
               + [(8000, s, k) for s in (1, 2, 3) for k in ("ucs", "tension")]
               + [(3500, s, k) for s in (1, 2, 3) for k in ("ucs_triaxial", "tension")]
+              # (fifteenth session: a sixth size, 20 across, unconfined and tension only: its triaxial
+              # tests would take about 50 minutes per seed on one thread)
+              + [(17000, s, k) for s in (1, 2, 3) for k in ("ucs", "tension")]
               + [(8000, s, "ucs_triaxial") for s in (1, 2, 3)])}
 QUICK["resolution"] = {
     "sizes": [120, 250], "seeds": [1, 2], "confining": [0.2],
