@@ -27,9 +27,9 @@ Contact law (contact_law): the same rock built and tested with Hertz-Mindlin and
 contacts (bench --contact-law, set before Compact Elements), the linear one at the same strain
 per step and at the same strain rate: porosity, bonds, UCS, E, nu, sigma_t, broken at the peak,
 the DFN, steps, particle-steps and run time.
-Resolution (resolution): the same rock at 250-8,000 grains (about 5-16 mean diameters across the
+Resolution (resolution): the same rock at 250-17,000 grains (about 5-20 mean diameters across the
 width), pack seeds 1-3: UCS, E, nu (unconfined), sigma_t (direct tension) and the friction angle
-(triaxial peaks at 10 and 20 % of the UCS with the UCS), each size's mean and seed spread against the
+(triaxial peaks at 10 and 20 % of the UCS with the UCS; up to 8,000 grains), each size's mean and seed spread against the
 finest size's, the cost of each test in seconds and particle-steps (images/speed_accuracy_resolution.png),
 and where each property converges within 5 %. The runs go in an order that keeps the most useful
 ones when the sweep is cut short; --no-new-runs writes the section from the runs already in WORK and
