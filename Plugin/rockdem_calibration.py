@@ -644,7 +644,8 @@ class _Bench:
     def tension(self, p, max_strain, strain_per_step=None):
         """The target's tensile test (TENSILE_TESTS) on the pack cemented with p; returns a
         dict whose tensile_strength is what that test calls the tensile strength.
-        strain_per_step: the platen strain per step; None: tension_strain_per_step's."""
+        strain_per_step: the platen strain per step; None: tension_strain_per_step's at the
+        Bond Modulus (files written before tension_modulus)."""
         sps = strain_per_step or tension_strain_per_step(self.target, self.recipe, p["BondModulus"])
         kind = self.target.get("tensile_test", "direct")
         if kind not in TENSILE_TESTS:
@@ -761,17 +762,46 @@ def start_levers(target, recipe):
 TENSION_STEPS_TO_PEAK = 4000
 
 
-def tension_strain_per_step(target, recipe, bond_modulus):
+def tension_strain_per_step(target, recipe, modulus):
     """Platen strain per step of the calibration's tensile test: the recipe's strain_per_step,
     or less, so that the test takes TENSION_STEPS_TO_PEAK steps to its expected peak strain:
-    sigma_t / Bond Modulus for direct tension (the specimen's elastic E is about the Bond
-    Modulus, Calibration.md), 30 x that for a Brazilian disc (its platen displacement over D
-    at the peak, _tension_strain)."""
+    sigma_t / modulus for direct tension, 30 x that for a Brazilian disc (its platen
+    displacement over D at the peak, _tension_strain). modulus (Pa): the specimen's elastic
+    modulus at the cement tried (calibrate passes tension_modulus's estimate; files written
+    before it record none and were pulled at the Bond Modulus's rate)."""
     st = target.get("tensile_strength")
-    if not st or not bond_modulus > 0:
+    if not st or not modulus > 0:
         return recipe["strain_per_step"]
     factor = 30.0 if target.get("tensile_test") == "brazilian" else 1.0
-    return min(recipe["strain_per_step"], factor * st / bond_modulus / TENSION_STEPS_TO_PEAK)
+    return min(recipe["strain_per_step"], factor * st / modulus / TENSION_STEPS_TO_PEAK)
+
+
+def tension_modulus(bond_modulus, elastic_test=None):
+    """The specimen's elastic modulus (Pa) at a Bond Modulus, for the tensile test's rate:
+    elastic_test = (Bond Modulus, E) of the latest elastic compression, scaled
+    proportionally (E is proportional to the Bond Modulus at fixed Bond Range and ratio);
+    without one, the Bond Modulus itself. At bonded coordination 11.5 the two agree (the
+    granite's elastic E 0.99 x the Bond Modulus); at 6.2 (Berea's Bond Range 1.0) E is
+    0.17 x, and a rate set from the Bond Modulus pulled 6 x slower than needed, past step
+    830,000 of a 3-million-step test (Calibration.md, "The tensile rate from the specimen's
+    modulus")."""
+    if elastic_test and elastic_test[0] > 0 and elastic_test[1] > 0:
+        return bond_modulus * elastic_test[1] / elastic_test[0]
+    return bond_modulus
+
+
+#: At most this many steps in a tensile test of the calibration: its Max Strain is cut to
+#: TENSION_MAX_STEPS x its rate (25 x the steps to the expected peak) when that is less. The
+#: peak (what the test reads) comes at 1-2 x the expected strain; a specimen whose load falls
+#: below half its peak only gradually (bonded coordination 6.2) would otherwise be pulled to
+#: Max Strain 0.002, 130 x its peak strain.
+TENSION_MAX_STEPS = 25 * TENSION_STEPS_TO_PEAK
+
+
+def tension_max_strain(target, strain_per_step):
+    """Max Strain of the calibration's tensile test at strain_per_step: _tension_strain's, cut
+    to TENSION_MAX_STEPS steps."""
+    return min(_tension_strain(target), TENSION_MAX_STEPS * strain_per_step)
 
 
 def _ucs_strain(target):
@@ -855,7 +885,11 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
                 rc = bench.compression(doc["parameters"], _ucs_strain(target))
                 m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "failure_poissons_ratio": rc["nu"]})
             if "tensile_strength" in target:
-                m["tensile_strength"] = bench.tension(doc["parameters"], _tension_strain(target))["tensile_strength"]
+                # at the rate the file's tensile test ran at (files without one: the Bond Modulus's)
+                sps = doc["test"].get("tension_strain_per_step") or tension_strain_per_step(
+                    target, validate_recipe(doc["recipe"]), doc["parameters"]["BondModulus"])
+                m["tensile_strength"] = bench.tension(doc["parameters"], tension_max_strain(target, sps),
+                                                      strain_per_step=sps)["tensile_strength"]
             if "friction_angle" in target:
                 _, m["cohesion"], m["friction_angle"] = bench.triaxial(
                     doc["parameters"], target["confining_stresses"], envelope_strain(target))
@@ -925,6 +959,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
     claimed = {}           # lever -> the property an earlier stage moved it for (nu's Bond Range)
     tested = {}            # p as it was at the latest test
+    elastic_test = None    # (Bond Modulus, E) of the latest elastic compression (tension_modulus)
     max_tests = recipe["max_tests"]
 
     def report(stage, kind, result_measured):
@@ -1020,6 +1055,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             solvers = stiffness_solvers(match_e)
             while bench.tests < max_tests:
                 r = bench.compression(p, elastic_strain, elastic=True)
+                if r.get("E"):
+                    elastic_test = (p["BondModulus"], r["E"])
                 m = {"youngs_modulus" if match_e else "elastic_youngs_modulus": r["E"], "poissons_ratio": r["nu"]}
                 errs = report("stiffness", "elastic compression", m)
                 if stiffness_step(solvers, m, errs):
@@ -1057,7 +1094,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
                     m.update({"ucs": rc["ucs"], "youngs_modulus": rc["E"], "failure_poissons_ratio": rc["nu"]})
                     histories["ucs"] = rc["history"]
                 if st_t:
-                    rt = bench.tension(p, _tension_strain(target))
+                    sps = tension_strain_per_step(target, recipe, tension_modulus(p["BondModulus"], elastic_test))
+                    rt = bench.tension(p, tension_max_strain(target, sps), strain_per_step=sps)
                     m["tensile_strength"] = rt["tensile_strength"]
                     histories["tension"] = rt["history"]
                 kind = (["compression"] if ucs_t else []) + \
@@ -1175,7 +1213,9 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
               "parameters": dict(p), "pack": dict(bench.pack_props),
               "cement": cement_properties(p, recipe),
               "test": {"strain_per_step": recipe["strain_per_step"], "timestep_safety": recipe["timestep_safety"],
-                       "tension_strain_per_step": tension_strain_per_step(target, recipe, p["BondModulus"])},
+                       "tension_modulus": tension_modulus(p["BondModulus"], elastic_test),
+                       "tension_strain_per_step": tension_strain_per_step(
+                           target, recipe, tension_modulus(p["BondModulus"], elastic_test))},
               "measured": {k: v for k, v in measured.items() if k != "triaxial_peaks"},
               "errors": final_errors, "tests": bench.tests, "iterations": iterations,
               "histories": histories, "packs": getattr(bench, "packs", 1), "porosity": bench.porosity, "elements": bench.elements,

@@ -116,7 +116,7 @@ class SyntheticBench:
         self.coordination = 5.9 + 13.5 * (p["BondRange"] - 1.0)
         return {"E": e, "nu": nu, "ucs": ucs, "history": {}}
 
-    def tension(self, p, strain):
+    def tension(self, p, strain, strain_per_step=None):
         self.tests += 1
         return {"tensile_strength": self.props(p)[3], "history": {}}
 
@@ -421,6 +421,20 @@ c.check(abs(sps - 6.9e6 / 2.5e11 / cal.TENSION_STEPS_TO_PEAK) < 1e-20 and sps < 
         cal.tension_strain_per_step({"tensile_strength": 1e6}, rec, 1e9) == 1e-7 and
         cal.tension_strain_per_step({}, rec, 2.5e11) == 1e-7,
         "tensile test rate: granite direct %.3g, Brazilian %.3g per step; capped at the recipe's 1e-7" % (sps, sps_b))
+# ... on the specimen's modulus: the latest elastic test's E scaled with the Bond Modulus
+# (Berea at Bond Range 1.0: E 19.3 GPa at 1.107e11 Pa, so 7.72e10 at 4.429e11), and at most
+# TENSION_MAX_STEPS steps (Max Strain cut from 0.002)
+mod = cal.tension_modulus(4.429e11, (1.107e11, 19.3e9))
+sps_berea = cal.tension_strain_per_step({"tensile_strength": 1.17e6}, rec, mod)
+berea_t = {"tensile_strength": 1.17e6, "youngs_modulus": 19.3e9}
+c.check(abs(mod - 4.429e11 * 19.3e9 / 1.107e11) < 1e-3 and cal.tension_modulus(4.429e11) == 4.429e11 and
+        abs(sps_berea - 1.17e6 / mod / cal.TENSION_STEPS_TO_PEAK) < 1e-22 and
+        abs(cal.tension_max_strain(berea_t, sps_berea) - cal.TENSION_MAX_STEPS * sps_berea) < 1e-18 and
+        cal.tension_max_strain(berea_t, sps_berea) < 0.002 and cal.tension_max_strain(berea_t, 1e-7) == 0.002,
+        "tensile test on the specimen's modulus: Berea at Bond Range 1.0, modulus %.4g Pa, %.3g per step "
+        "(the Bond Modulus's %.3g), Max Strain %.3g" % (
+            mod, sps_berea, cal.tension_strain_per_step({"tensile_strength": 1.17e6}, rec, 4.429e11),
+            cal.tension_max_strain(berea_t, sps_berea)))
 c.check(cal.start_levers({"ucs": 58e6, "tensile_strength": 2e6}, cal.validate_recipe({"moment_contribution": 0.5}))
         == (0.5, 4.0) and cal.start_levers({"ucs": 58e6, "tensile_strength": 8e6}, cal.validate_recipe({})) == (1.0, 4.0),
         "start levers: the recipe's Moment Contribution when set; beta 1, q 4 below the beta-0 ratio")
@@ -563,7 +577,8 @@ c.check(cal.preset_of({"rock": "Lac du Bonnet granite"}) == cal.load_rock("lac_d
 # --- 5. the shipped parameter files (Data/calibrated/) -----------------------------------
 # every one loads (format, version, property names), is listed in that folder's README,
 # and a file calibrated on its tensile strength carries the rate its tensile test ran at
-# (the rate tension_strain_per_step gives for its target, recipe and Bond Modulus) and is
+# (the rate tension_strain_per_step gives for its target, recipe and tension_modulus, the
+# Bond Modulus in files written before it) and is
 # either converged or says unreachable for exactly the targets it misses
 data = os.path.join(os.path.dirname(os.path.dirname(HERE)), "Data", "calibrated")
 with open(os.path.join(data, "README.md")) as f:
@@ -574,7 +589,8 @@ for name in sorted(n for n in os.listdir(data) if n.endswith(".json")):
     what = "listed in the README"
     if "tension_strain_per_step" in doc["test"]:
         t = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
-        rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]), doc["parameters"]["BondModulus"])
+        rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]),
+                                           doc["test"].get("tension_modulus", doc["parameters"]["BondModulus"]))
         outside = sorted(k for k in t if k in doc["tolerances"] and k in doc["errors"]
                          and abs(doc["errors"][k]) > doc["tolerances"][k])
         ok = ok and rate == doc["test"]["tension_strain_per_step"] and \
