@@ -123,4 +123,17 @@ void incrementBond(BondSection section, double kn, double ks, bool planar, dvec3
   bendingMoment = rotateIntoPlane(bendingMoment, normal) - kn * section.inertia * inPlane(relativeSpin, normal) * dt;
 }
 
+/// dem::bondStoredEnergy: the elastic energy (J) of an intact bond's springs.
+double bondStoredEnergy(BondSection section, double kn, double ks, double normalForce, dvec3 shearForce,
+                        double twistingMoment, dvec3 bendingMoment)
+{
+  double stored = 0.5LF * normalForce * normalForce / (kn * section.area) +
+    0.5LF * squaredNorm3(shearForce) / (ks * section.area) +
+    0.5LF * squaredNorm3(bendingMoment) / (kn * section.inertia);
+  if (section.polar > 0.0LF) {
+    stored += 0.5LF * twistingMoment * twistingMoment / (ks * section.polar);
+  }
+  return stored;
+}
+
 #endif

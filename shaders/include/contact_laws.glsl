@@ -230,4 +230,11 @@ double cundallDamping(double force, double velocity, double alpha)
   return force - (velocity != 0.0LF ? damping : 0.0LF);
 }
 
+/// dem::cundallDampingWork: the work (J) Cundall damping takes from a particle in a step dt.
+double cundallDampingWork(dvec3 force, dvec3 damped, dvec3 velocity, dvec3 torque, dvec3 dampedTorque,
+                          dvec3 spin, double dt)
+{
+  return (dot3(force - damped, velocity) + dot3(torque - dampedTorque, spin)) * dt;
+}
+
 #endif

@@ -49,6 +49,11 @@ void main()
                                            p.bondTanFriction.v[k], p.bondSoftening.v[k], damage);
   p.bondDamage.v[k] = damage;
   if (failure != BOND_INTACT) {
+    if (p.countDissipation != 0u) {
+      // the energy its springs held, which breaking takes out of the model
+      p.breakEnergy.v[k] = (1.0LF - damage) * bondStoredEnergy(section, p.bondKn.v[k], p.bondKs.v[k], normalForce,
+                                                                shearForce, twistingMoment, bendingMoment);
+    }
     // dem::Bonds::markBroken
     p.bondFailure.v[k] = failure;
     p.bondFailureTime.v[k] = p.clock.v[CLOCK_TIME] + dt;

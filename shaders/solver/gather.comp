@@ -144,6 +144,9 @@ void main()
   }
   store3(p.force, i, damped);
   store3(p.torque, i, dampedTorque);
+  if (p.countDissipation != 0u && alpha > 0.0LF) {
+    p.dampingWork.v[i] += cundallDampingWork(force, damped, v, torque, dampedTorque, w, p.dt);
+  }
   const double invMass = p.inverseMass.v[i];
   if (invMass != 0.0LF) {
     const double halfStep = 0.5LF * p.dt;

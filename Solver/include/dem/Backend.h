@@ -61,6 +61,12 @@ public:
   /// Non-finite values, escaped particles and kinetic energy after the last step.
   virtual StabilityReport stability() = 0;
 
+  /// Starts (on: from zero) or stops counting what the steps dissipate, for the energy
+  /// check's balance: each particle's Cundall damping work and each breaking bond's stored
+  /// energy, in the contact state's dampingWork and breakEnergy (sync() brings them). Off
+  /// by default: it costs a write per particle per step.
+  virtual void countDissipation(bool on) = 0;
+
   /// What the backend holds in device memory (zero for the CPU).
   virtual DeviceMemory deviceMemory() const { return {}; }
 };

@@ -32,4 +32,20 @@ inline void incrementBond(const BondSection& section, double kn, double ks, bool
   bendingMoment = rotateIntoPlane(bendingMoment, normal) - kn * section.inertia * inPlane(relativeSpin, normal) * dt;
 }
 
+/// Elastic energy (J) an intact bond's springs hold (PHYSICS.md section 3): F = k A u for the
+/// normal and shear forces, M = k J theta (twist, ks) and M = k I theta (bending, kn), so
+/// each holds F^2 / (2 k A) or M^2 / (2 k J|I); kn, ks in Pa/m. A softened bond holds
+/// (1 - D) of it (the caller's factor). GLSL twin in bond_laws.glsl.
+inline double bondStoredEnergy(const BondSection& section, double kn, double ks, double normalForce,
+                               const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment)
+{
+  double stored = 0.5 * normalForce * normalForce / (kn * section.area) +
+    0.5 * shearForce.squaredNorm() / (ks * section.area) +
+    0.5 * bendingMoment.squaredNorm() / (kn * section.inertia);
+  if (section.polar > 0.0) {
+    stored += 0.5 * twistingMoment * twistingMoment / (ks * section.polar);
+  }
+  return stored;
+}
+
 } // namespace dem

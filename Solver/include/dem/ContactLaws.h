@@ -188,6 +188,17 @@ inline double cundallDamping(double force, double velocity, double alpha)
   return force - (velocity != 0.0 ? damping : 0.0);
 }
 
+/// Work (J) that Cundall damping takes from one particle in a step of dt (s): the damping
+/// force (force - damped, N) on the velocity it acted on (m/s), plus the damping torque
+/// (torque - dampedTorque, N m) on the spin (rad/s); >= 0, the damping opposing the motion.
+/// The energy check's dissipation (Simulation::checkStability; GLSL twin in
+/// contact_laws.glsl).
+inline double cundallDampingWork(const Vec3& force, const Vec3& damped, const Vec3& velocity,
+                                 const Vec3& torque, const Vec3& dampedTorque, const Vec3& spin, double dt)
+{
+  return ((force - damped).dot(velocity) + (torque - dampedTorque).dot(spin)) * dt;
+}
+
 /// Restitution delivered by one head-on collision of the given law with damping
 /// coefficient `c` and the no-tension cut-off (dimensionless, speed independent for both
 /// laws). Integrates the collision in dimensionless form with a fine RK4 step.

@@ -117,6 +117,12 @@ public:
   /// origin) + elastic energy stored in the normal and tangential contact springs and in
   /// the intact bonds (normal, shear, twisting and bending springs, times 1 - damage).
   double totalEnergy() const;
+  /// J, what the steps have dissipated since this Simulation started, while the backend
+  /// counts it (the first 32 steps of a load test, the early checks): the work Cundall
+  /// damping took from the particles plus the energy the bonds that broke held. Not
+  /// counted: the contacts' viscous damping, sliding and rolling friction (so the balance
+  /// E0 + W - (K + U + dissipated) is >= 0 for a physical run). 0 outside that window.
+  double dissipatedEnergy() const;
 
   /// Writes the live contact history into model.contacts (done after every advance()).
   void exportContacts();
@@ -161,6 +167,8 @@ private:
   /// there: the early checks stopped stable compactions and changed the packs they built.
   /// Those runs keep the kinetic-energy check every 64 steps, as before.
   bool earlyChecks_ = false;
+  /// The backend counts the dissipation (during the early checks' window).
+  bool countingDissipation_ = false;
   std::array<double, 6> lastWallPosition_{};  ///< m, at the last check
   std::array<double, 6> lastWallForce_{};     ///< N, axis component of the particles' push, at the last check
   std::vector<Vec3> lastMembranePosition_;    ///< m, at the last check (membrane and tension runs)

@@ -60,6 +60,11 @@ struct ContactState {
   std::array<double, 6> wallPositionAtBuild{};
   std::array<bool, 6> wallActiveAtBuild{};
   std::vector<Vec3> undampedForce;   // N, net force before local damping (platen reactions)
+  // While the backend counts dissipation (Backend::countDissipation): the work Cundall
+  // damping took from each particle (J, per slot), and the energy each bond's springs held
+  // when it broke (J, per bond; 0 for the others), since counting started.
+  std::vector<double> dampingWork;
+  std::vector<double> breakEnergy;
   // External forces on the particles (N, per slot; empty: none): the membrane of a
   // cylindrical specimen (dem/Membrane.h), recomputed from the positions every step.
   std::vector<Vec3> externalForce;

@@ -257,6 +257,15 @@ void CpuBackend::run(std::int64_t steps)
   }
 }
 
+void CpuBackend::countDissipation(bool on)
+{
+  countDissipation_ = on;
+  if (on) {
+    state_.dampingWork.assign(model_.particles.size(), 0.0);
+    state_.breakEnergy.assign(model_.bonds.size(), 0.0);
+  }
+}
+
 StabilityReport CpuBackend::stability()
 {
   const Particles& p = model_.particles;
@@ -823,6 +832,8 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const Vec3* const positionAtBuild = im.positionAtBuild.data();
   const double* const inverseInertia = im.inverseInertia.data();
   const double stepDt = timestep_;
+  // On a real step while counting dissipation: each particle's Cundall damping work.
+  double* const dampingWork = countDissipation_ && closingKick ? im.dampingWork.data() : nullptr;
   // With driftNext, the next step's kick and drift (step(), run()).
   bool stale = false; // the drift made the neighbour list stale
   const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
@@ -893,6 +904,9 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
       }
       netForce[i] = damped;
       netTorque[i] = dampedTorque;
+      if (dampingWork != nullptr && alpha > 0.0) {
+        dampingWork[i] += cundallDampingWork(force, damped, moveVelocity[i], torque, dampedTorque, moveSpin[i], stepDt);
+      }
       if (closingKick && inverseMass[i] != 0.0) {
         moveVelocity[i] += (half * inverseMass[i]) * damped;
         moveSpin[i] += (half * inverseInertia[i]) * dampedTorque;
@@ -1030,6 +1044,11 @@ void CpuBackend::computeBondForces(bool incrementState)
       const BondFailure failure = softenedBondFailure(stresses, b.tensileStrength[k], b.cohesion[k],
                                                       b.frictionAngle[k], b.softening[k], b.damage[k]);
       if (failure != BondFailure::Intact) {
+        if (countDissipation_) {
+          // the energy its springs held, which breaking takes out of the model
+          im.breakEnergy[k] = b.intactShare(k) * bondStoredEnergy(section, b.normalStiffness[k], b.shearStiffness[k],
+            b.normalForce[k], b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+        }
         // Broken for good: record how, when, where and how it was oriented.
         b.markBroken(k, failure, endTime, p.position[i] + armI * normal, normal);
         im.bondForce[k].setZero();

@@ -48,6 +48,7 @@ public:
   void run(std::int64_t steps) override;
   const ContactState& sync() override { return state_; }
   StabilityReport stability() override;
+  void countDissipation(bool on) override;
 
   /// The contact state, for a backend that starts from the CPU's (the Vulkan backend).
   ContactState& state() { return state_; }
@@ -79,6 +80,8 @@ private:
   // neighbour list stale): the step starts at the wall control.
   bool drifted_ = false;
   bool driftedStale_ = false;
+  // countDissipation: the steps add to the contact state's dampingWork and breakEnergy.
+  bool countDissipation_ = false;
 };
 
 } // namespace dem

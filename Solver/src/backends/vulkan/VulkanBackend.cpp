@@ -49,7 +49,7 @@ const ArraySpec kArrays[] = {
   { "displacement", Count::N3, 8 }, { "force", Count::N3, 8 }, { "torque", Count::N3, 8 },
   { "undampedForce", Count::N3, 8 }, { "positionAtBuild", Count::N3, 8 },
   { "radius", Count::N, 8 }, { "mass", Count::N, 8 }, { "inertia", Count::N, 8 },
-  { "inverseMass", Count::N, 8 }, { "inverseInertia", Count::N, 8 }, { "kinetic", Count::N, 8 },
+  { "inverseMass", Count::N, 8 }, { "inverseInertia", Count::N, 8 }, { "kinetic", Count::N, 8 }, { "dampingWork", Count::N, 8 },
   { "flags", Count::N, 4 }, { "sizeClass", Count::N, 4 },
   { "keysA", Count::N, 4 }, { "keysB", Count::N, 4 }, { "valuesA", Count::N, 4 }, { "valuesB", Count::N, 4 },
   { "histogram", Count::Histogram, 4 }, { "cellStart", Count::Cells, 4 }, { "cellEnd", Count::Cells, 4 },
@@ -80,6 +80,7 @@ const ArraySpec kArrays[] = {
   { "bondFailure", Count::Bonds, 4 }, { "bondFailureTime", Count::Bonds, 8 },
   { "bondFailurePosition", Count::Bonds3, 8 }, { "bondFailureNormal", Count::Bonds3, 8 },
   { "bondForce", Count::Bonds3, 8 }, { "bondTorqueI", Count::Bonds3, 8 }, { "bondTorqueJ", Count::Bonds3, 8 },
+  { "breakEnergy", Count::Bonds, 8 },
   { "bondAdjacencyStart", Count::NPlus1, 4 }, { "bondAdjacency", Count::Bonds2, 4 },
   { "ctl", Count::Control, 4 }, { "walls", Count::WallData, 8 }, { "clock", Count::Clock, 8 },
   { "indirect", Count::Indirect, 4 }, { "partialSums", Count::Partial, 8 },
@@ -656,6 +657,12 @@ std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
   add(st.bondForce, "bondForce", bonds_);
   add(st.bondTorqueI, "bondTorqueI", bonds_);
   add(st.bondTorqueJ, "bondTorqueJ", bonds_);
+  if (countDissipation_) {
+    st.dampingWork.resize(n);
+    st.breakEnergy.resize(bonds_);
+    add(st.dampingWork, "dampingWork", n);
+    add(st.breakEnergy, "breakEnergy", bonds_);
+  }
   add(im.walls, "walls", im.walls.size());
   add(im.clock, "clock", im.clock.size());
   return items;
@@ -999,6 +1006,20 @@ const ContactState& VulkanBackend::sync()
     synced_ = true;
   }
   return host_->state();
+}
+
+void VulkanBackend::countDissipation(bool on)
+{
+  countDissipation_ = on;
+  params_.countDissipation = on ? 1u : 0u;
+  host_->countDissipation(on); // (a step run on the host counts too)
+  if (on) {
+    const vk::Api& api = device_->api();
+    device_->submit([&](VkCommandBuffer cb) {
+      api.vkCmdFillBuffer(cb, array("dampingWork").buffer, 0, VK_WHOLE_SIZE, 0);
+      api.vkCmdFillBuffer(cb, array("breakEnergy").buffer, 0, VK_WHOLE_SIZE, 0);
+    });
+  }
 }
 
 StabilityReport VulkanBackend::stability()

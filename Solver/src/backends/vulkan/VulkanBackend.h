@@ -52,6 +52,7 @@ public:
   void run(std::int64_t steps) override;
   const ContactState& sync() override;
   StabilityReport stability() override;
+  void countDissipation(bool on) override;
 
   DeviceMemory deviceMemory() const override;
   /// Neighbour rebuilds done on the device so far.
@@ -101,6 +102,7 @@ private:
   const vk::Buffer* walls_ = nullptr;
   const vk::Buffer* partialSums_ = nullptr;
   std::uint32_t n_ = 0;
+  bool countDissipation_ = false; // countDissipation: the device arrays travel with the state
   std::uint32_t bonds_ = 0;
   std::uint32_t sortPasses_ = 0;
   std::uint32_t pairCapacity_ = 0;
