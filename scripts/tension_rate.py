@@ -4,7 +4,7 @@
 
 Rebuilds the file's specimen (its recipe, seed and cement) as rockdem.calibrate does,
 pulls it with the file's tensile test type at STRAIN_PER_STEP (-, platen strain per
-timestep) and prints the tensile strength (Pa) it reads. Documentation/Calibration.md,
+timestep; to the calibration's Max Strain, tension_max_strain) and prints the tensile strength (Pa) it reads. Documentation/Calibration.md,
 "The tensile test's rate", has the granite's series.
 """
 import sys
@@ -29,7 +29,7 @@ def main():
     bench = cal.bench_for(doc, target)
     t0 = time.time()
     try:
-        r = bench.tension(doc["parameters"], cal._tension_strain(target), strain_per_step=rate)
+        r = bench.tension(doc["parameters"], cal.tension_max_strain(target, rate), strain_per_step=rate)
     finally:
         bench.close()
     print("strain per step %g: %s tensile strength %.4g Pa (%.0f s)"

@@ -421,20 +421,25 @@ c.check(abs(sps - 6.9e6 / 2.5e11 / cal.TENSION_STEPS_TO_PEAK) < 1e-20 and sps < 
         cal.tension_strain_per_step({"tensile_strength": 1e6}, rec, 1e9) == 1e-7 and
         cal.tension_strain_per_step({}, rec, 2.5e11) == 1e-7,
         "tensile test rate: granite direct %.3g, Brazilian %.3g per step; capped at the recipe's 1e-7" % (sps, sps_b))
-# ... on the specimen's modulus: the latest elastic test's E scaled with the Bond Modulus
-# (Berea at Bond Range 1.0: E 19.3 GPa at 1.107e11 Pa, so 7.72e10 at 4.429e11), and at most
-# TENSION_MAX_STEPS steps (Max Strain cut from 0.002)
-mod = cal.tension_modulus(4.429e11, (1.107e11, 19.3e9))
-sps_berea = cal.tension_strain_per_step({"tensile_strength": 1.17e6}, rec, mod)
-berea_t = {"tensile_strength": 1.17e6, "youngs_modulus": 19.3e9}
-c.check(abs(mod - 4.429e11 * 19.3e9 / 1.107e11) < 1e-3 and cal.tension_modulus(4.429e11) == 4.429e11 and
-        abs(sps_berea - 1.17e6 / mod / cal.TENSION_STEPS_TO_PEAK) < 1e-22 and
-        abs(cal.tension_max_strain(berea_t, sps_berea) - cal.TENSION_MAX_STEPS * sps_berea) < 1e-18 and
-        cal.tension_max_strain(berea_t, sps_berea) < 0.002 and cal.tension_max_strain(berea_t, 1e-7) == 0.002,
-        "tensile test on the specimen's modulus: Berea at Bond Range 1.0, modulus %.4g Pa, %.3g per step "
-        "(the Bond Modulus's %.3g), Max Strain %.3g" % (
-            mod, sps_berea, cal.tension_strain_per_step({"tensile_strength": 1.17e6}, rec, 4.429e11),
-            cal.tension_max_strain(berea_t, sps_berea)))
+# ... and at most TENSION_MAX_STEPS steps: Berea at Bond Modulus 4.429e11 Pa pulls at 6.6e-10 per
+# step to a Max Strain cut from 0.002 to 6.6e-5
+sps_berea = cal.tension_strain_per_step({"tensile_strength": 1.17e6}, rec, 4.429e11)
+berea_st = {"tensile_strength": 1.17e6, "youngs_modulus": 19.3e9}
+c.check(abs(cal.tension_max_strain(berea_st, sps_berea) - cal.TENSION_MAX_STEPS * sps_berea) < 1e-18 and
+        cal.tension_max_strain(berea_st, sps_berea) < 1e-4 and cal.tension_max_strain(berea_st, 1e-7) == 0.002,
+        "tensile test's Max Strain: Berea at 4.429e11 Pa, %.3g per step, Max Strain %.3g (%d steps)"
+        % (sps_berea, cal.tension_max_strain(berea_st, sps_berea), cal.TENSION_MAX_STEPS))
+# the pack's locked-in stress: DEM Pack Source's default (2e-6 x the grains' modulus) unless it
+# passes LOCKED_IN_FRACTION of the target's smallest strength (Berea at Bond Modulus 9.7e11 Pa
+# held 1.5 MPa against sigma_t 1.17 MPa); the shipped files' packs keep the default
+granite_t = {"ucs": 200e6, "tensile_strength": 6.9e6}
+berea_t = {"ucs": 73.8e6, "tensile_strength": 1.17e6}
+c.check(cal.locked_in_ceiling(granite_t, 2.5157e11) == 0.0 and cal.locked_in_ceiling(berea_t, 6.919e10) == 0.0 and
+        cal.locked_in_ceiling(berea_t, 9.704e11) == cal.LOCKED_IN_FRACTION * 1.17e6 and
+        cal.locked_in_ceiling({"ucs": 73.8e6}, 1e13) == cal.LOCKED_IN_FRACTION * 73.8e6 and
+        cal.locked_in_ceiling({}, 1e13) == 0.0,
+        "locked-in stress ceiling: the default for the granite and Berea files' moduli, %.4g Pa for Berea at 9.7e11 Pa"
+        % cal.locked_in_ceiling(berea_t, 9.704e11))
 c.check(cal.start_levers({"ucs": 58e6, "tensile_strength": 2e6}, cal.validate_recipe({"moment_contribution": 0.5}))
         == (0.5, 4.0) and cal.start_levers({"ucs": 58e6, "tensile_strength": 8e6}, cal.validate_recipe({})) == (1.0, 4.0),
         "start levers: the recipe's Moment Contribution when set; beta 1, q 4 below the beta-0 ratio")
@@ -577,8 +582,7 @@ c.check(cal.preset_of({"rock": "Lac du Bonnet granite"}) == cal.load_rock("lac_d
 # --- 5. the shipped parameter files (Data/calibrated/) -----------------------------------
 # every one loads (format, version, property names), is listed in that folder's README,
 # and a file calibrated on its tensile strength carries the rate its tensile test ran at
-# (the rate tension_strain_per_step gives for its target, recipe and tension_modulus, the
-# Bond Modulus in files written before it) and is
+# (the rate tension_strain_per_step gives for its target, recipe and Bond Modulus) and is
 # either converged or says unreachable for exactly the targets it misses
 data = os.path.join(os.path.dirname(os.path.dirname(HERE)), "Data", "calibrated")
 with open(os.path.join(data, "README.md")) as f:
@@ -589,8 +593,7 @@ for name in sorted(n for n in os.listdir(data) if n.endswith(".json")):
     what = "listed in the README"
     if "tension_strain_per_step" in doc["test"]:
         t = cal.validate_target(dict(doc["target"], tolerances=doc["tolerances"]))
-        rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]),
-                                           doc["test"].get("tension_modulus", doc["parameters"]["BondModulus"]))
+        rate = cal.tension_strain_per_step(t, cal.validate_recipe(doc["recipe"]), doc["parameters"]["BondModulus"])
         outside = sorted(k for k in t if k in doc["tolerances"] and k in doc["errors"]
                          and abs(doc["errors"][k]) > doc["tolerances"][k])
         ok = ok and rate == doc["test"]["tension_strain_per_step"] and \
