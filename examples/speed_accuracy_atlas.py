@@ -649,7 +649,9 @@ FULL["resolution"] = {
               # (fifteenth session: a sixth size, 20 across, unconfined and tension only: its triaxial
               # tests would take about 50 minutes per seed on one thread)
               + [(17000, s, k) for s in (1, 2, 3) for k in ("ucs", "tension")]
-              + [(8000, s, "ucs_triaxial") for s in (1, 2, 3)])}
+              + [(8000, s, "ucs_triaxial") for s in (1, 2, 3)]
+              # (sixteenth session: the friction angle at 20 across, seed 1 only: about an hour)
+              + [(17000, 1, "ucs_triaxial")])}
 QUICK["resolution"] = {
     "sizes": [120, 250], "seeds": [1, 2], "confining": [0.2],
     "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
