@@ -122,6 +122,19 @@ std::vector<double> cpuResults(const Case& c)
   out[OUT_SOFTENED_FAILURE] = static_cast<double>(dem::softenedBondFailure(
     stresses, in[IN_BOND_SIGMA], in[IN_BOND_COHESION], in[IN_BOND_PHI], in[IN_BOND_SOFTENING], damage));
   out[OUT_DAMAGE] = damage;
+  out[OUT_BOND_ENERGY] = dem::bondStoredEnergy(section, in[IN_BOND_KN], in[IN_BOND_KS], fn, fs, mt, mb);
+  {
+    const Vec3 force = c.get3(IN_BOND_FS);
+    const Vec3 velocity = c.get3(IN_BOND_VELOCITY);
+    const Vec3 torque = c.get3(IN_BOND_MB);
+    const Vec3 spin = c.get3(IN_BOND_SPIN);
+    Vec3 damped, dampedTorque;
+    for (int k = 0; k < 3; ++k) {
+      damped[k] = dem::cundallDamping(force[k], velocity[k], in[IN_CUNDALL_ALPHA]);
+      dampedTorque[k] = dem::cundallDamping(torque[k], spin[k], in[IN_CUNDALL_ALPHA]);
+    }
+    out[OUT_DAMPING_WORK] = dem::cundallDampingWork(force, damped, velocity, torque, dampedTorque, spin, in[IN_DT]);
+  }
   out[OUT_SERVO] = dem::servoWallVelocity(in[IN_SERVO_ELASTIC], in[IN_SERVO_STIFFNESS], in[IN_SERVO_AREA],
                                           in[IN_SERVO_TARGET], in[IN_SERVO_ALPHA], in[IN_DT],
                                           in[IN_SERVO_MAX_SPEED], static_cast<int>(in[IN_SERVO_SIDE]));

@@ -74,5 +74,8 @@
 #define OUT_SERVO 54u
 #define OUT_SOFTENED_FAILURE 55u // softenedBondFailure
 #define OUT_DAMAGE 56u           // the damage after it
+#define OUT_BOND_ENERGY 57u      // bondStoredEnergy of the stepped bond
+#define OUT_DAMPING_WORK 58u     // cundallDampingWork: force IN_BOND_FS, velocity IN_BOND_VELOCITY,
+                                 // torque IN_BOND_MB, spin IN_BOND_SPIN, alpha IN_CUNDALL_ALPHA, IN_DT
 
 #endif

@@ -122,6 +122,21 @@ void main()
   out_(c, OUT_SOFTENED_FAILURE, double(softenedBondFailure(stresses, in_(c, IN_BOND_SIGMA), in_(c, IN_BOND_COHESION),
                                                            in_(c, IN_BOND_TAN_PHI), in_(c, IN_BOND_SOFTENING), damage)));
   out_(c, OUT_DAMAGE, damage);
+  out_(c, OUT_BOND_ENERGY, bondStoredEnergy(section, in_(c, IN_BOND_KN), in_(c, IN_BOND_KS), normalForce, shearForce,
+                                            twistingMoment, bendingMoment));
+  {
+    const dvec3 force = in3(c, IN_BOND_FS);
+    const dvec3 velocity = in3(c, IN_BOND_VELOCITY);
+    const dvec3 torque = in3(c, IN_BOND_MB);
+    const dvec3 spin = in3(c, IN_BOND_SPIN);
+    const double alpha = in_(c, IN_CUNDALL_ALPHA);
+    dvec3 damped, dampedTorque;
+    for (int k = 0; k < 3; ++k) {
+      damped[k] = cundallDamping(force[k], velocity[k], alpha);
+      dampedTorque[k] = cundallDamping(torque[k], spin[k], alpha);
+    }
+    out_(c, OUT_DAMPING_WORK, cundallDampingWork(force, damped, velocity, torque, dampedTorque, spin, in_(c, IN_DT)));
+  }
   out_(c, OUT_SERVO, servoWallVelocity(in_(c, IN_SERVO_ELASTIC), in_(c, IN_SERVO_STIFFNESS),
                                        in_(c, IN_SERVO_AREA), in_(c, IN_SERVO_TARGET), in_(c, IN_SERVO_ALPHA),
                                        in_(c, IN_DT), in_(c, IN_SERVO_MAX_SPEED), int(in_(c, IN_SERVO_SIDE))));
