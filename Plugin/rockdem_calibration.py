@@ -320,8 +320,8 @@ class LeverChain:
     value; when that lever is spent (its solver says unreachable: at a bound, the goal
     beyond it) the next lever starts from the same measurement, without another test.
     Returns True when a parameter was moved, False when every lever is spent (the
-    property is unreachable). ``spent`` (a set shared between rounds) keeps the spent
-    levers' names so that a later round starts from the first lever still free."""
+    property is unreachable). ``spent`` (the property's set, shared between rounds) keeps
+    the spent levers' names so that a later round starts from the first lever still free."""
 
     def __init__(self, levers, goal, p, spent):
         self.levers = [lv for lv in levers if lv[0] not in spent]
@@ -970,7 +970,10 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         p["TensileStrength"] = st_t
     measured = {}
     unreachable = set()
-    spent = set()          # levers at a bracket end that cannot get closer (LeverChain)
+    # levers at a bracket end that cannot get closer (LeverChain), per property: the Bond
+    # Range is a lever of nu and of phi, and spent for one (its goal beyond a bracket end) it
+    # may still move the other the way it needs
+    spent = {"poissons_ratio": set(), "tensile_strength": set(), "friction_angle": set()}
     claimed = {}           # lever -> the property an earlier stage moved it for (nu's Bond Range)
     tested = {}            # p as it was at the latest test
     max_tests = recipe["max_tests"]
@@ -1018,7 +1021,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
     def stiffness_solvers(match_e=True):
         return [new_e_solver() if match_e else None,
-                LeverChain(NU_LEVERS, target["poissons_ratio"], p, spent) if "poissons_ratio" in target else None]
+                LeverChain(NU_LEVERS, target["poissons_ratio"], p, spent["poissons_ratio"]) if "poissons_ratio" in target else None]
 
     def new_e_solver():
         return SecantSolver(math.log(e_t), slope_guess=1.0, max_step=math.log(4.0)) if e_t else None
@@ -1095,7 +1098,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             # to q; raising beta from 0 moves it abruptly (Berea, 5,000 grains, q 21: beta
             # 0 -> 0.5 took the ratio 180 -> 15 and UCS -92 %). Otherwise beta first.
             levers = RATIO_LEVERS[::-1] if beta0 == 0.0 else RATIO_LEVERS
-            q_chain = LeverChain(levers, math.log(ucs_t / st_t), p, spent) if (ucs_t and st_t) else None
+            q_chain = LeverChain(levers, math.log(ucs_t / st_t), p, spent["tensile_strength"]) if (ucs_t and st_t) else None
             pair = (1 if ucs_t else 0) + (1 if st_t else 0)
             while bench.tests + pair <= max_tests:   # (a compression and a tension per record)
                 ucs_strain = _ucs_strain(target)
@@ -1188,7 +1191,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             # (a Bond Range that nu needed is not the envelope's: phi is then reported as it
             # is, unreachable with its levers held, and nu stays matched)
             f_chain = LeverChain([lv for lv in ENVELOPE_LEVERS if lv[0] not in claimed],
-                                 target["friction_angle"], p, spent)
+                                 target["friction_angle"], p, spent["friction_angle"])
             confining = list(target["confining_stresses"])
             while bench.tests + len(confining) <= max_tests:
                 results, coh, phi = bench.triaxial(p, confining, envelope_strain(target))
