@@ -111,16 +111,6 @@ TEST(EnergyCheck, TotalEnergyCountsTheBondSprings)
   EXPECT_NEAR(again.totalEnergy() - before, expected, 1e-9 * expected);
 }
 
-/// A violent start for the balance tests: every grain of m moving at up to `speed` m/s in
-/// a fixed pattern (no random generator: the same model on every platform).
-void shake(Model& m, double speed)
-{
-  for (std::size_t i = 0; i < m.particles.size(); ++i) {
-    const double x = static_cast<double>(i);
-    m.particles.velocity[i] = speed * Vec3(std::sin(1.3 * x), std::cos(1.7 * x), std::sin(2.3 * x + 0.5));
-  }
-}
-
 // The balance of the early checks closes once the dissipation is counted: with no viscous
 // contact damping (restitution 1) every loss but sliding friction is Cundall damping or a
 // breaking bond, so over the first 31 steps of a test E(31) - E(0) + D = W (energy

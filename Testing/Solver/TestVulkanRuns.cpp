@@ -151,10 +151,7 @@ TEST(VulkanRuns, DissipationCountedInTheFirstStepsIsTheCpus)
   ROCKDEM_REQUIRE_VULKAN_DEVICE();
   Model m = cementedSpecimen(150, 0.012, 2);
   startLoadTest(m, compression(1.0, 10));
-  for (std::size_t i = 0; i < m.particles.size(); ++i) {
-    const double x = static_cast<double>(i);
-    m.particles.velocity[i] = 3.0 * Vec3(std::sin(1.3 * x), std::cos(1.7 * x), std::sin(2.3 * x + 0.5));
-  }
+  dem::testing::shake(m, 3.0);
   double dissipated[2] = { 0.0, 0.0 };
   Model ends[2] = { m, m };
   for (int k = 0; k < 2; ++k) {
