@@ -24,9 +24,10 @@ recipe; every iteration only re-cements and re-tests it):
 3. envelope (when the target has a friction angle and a confining range): the friction
    angle of the Mohr-Coulomb fit of triaxial peaks by bracketed secant on the Bond Range
    ([1, 2]: the friction angle rises with the bonded coordination, Rock.md; a new Bond
-   Range re-cements the same compacted pack) (ENVELOPE_LEVERS; the bond Friction Angle,
-   measured flat, is no longer a lever), unless nu has claimed the Bond Range (then the
-   friction angle is measured and reported as it is);
+   Range re-cements the same compacted pack), unless nu has claimed the Bond Range, then
+   (the Bond Range spent or held) on the grains' Friction ([0, 1]: the friction of the
+   contacts that carry the load where bonds have broken; the pack's grains stay where they
+   are) (ENVELOPE_LEVERS; the bond Friction Angle, measured flat, is no longer a lever);
 
 then again from 1 until every target is within its tolerance, a target is found
 unreachable (every lever of its chain is at a bracket end that misses it on the same
@@ -59,7 +60,7 @@ TENSILE_TESTS = ("direct", "brazilian")
 #: The bracket of each bounded variable (Cement.md ranges, narrowed to what is useful).
 BRACKETS = {"BondStiffnessRatio": (0.01, 2.0), "CohesionRatio": (0.5, 30.0),
             "MomentContribution": (0.0, 1.0), "BondRange": (1.0, 2.0),
-            "FrictionAngle": (0.0, 60.0)}
+            "FrictionAngle": (0.0, 60.0), "GrainFriction": (0.0, 1.0)}
 
 #: The levers of a property, in the order they are used: (variable, slope guess dy/dx,
 #: max step). A LeverChain solves the property on the first lever; when that lever is at
@@ -99,9 +100,14 @@ RATIO_EXPONENT = 0.9
 #: puts both within their bands, and leaves the ratio's lever where it is.
 MIDDLE_FRACTION = 0.8
 #: friction angle: Bond Range (Rock.md: 41.7 / 48.9 / 54.0 / 57.8 deg at 1.0 / 1.2 / 1.4 /
-#: 1.6, about 27 deg per unit). The bond Friction Angle moved nothing (44-45 deg at 0-60
-#: deg, Calibration.md) and is left at its start value.
-ENVELOPE_LEVERS = (("BondRange", 25.0, 0.4),)
+#: 1.6, about 27 deg per unit), then the grains' Friction (DEM Pack Source Friction, the
+#: friction of the contacts between grains, which carry the load where bonds have broken):
+#: measured on the Berea file's 5,000 grains (Bond Range 1.0, held by nu) over 0-200 MPa of
+#: confinement at 1e-6 per step, 35.6 deg at Friction 0.5 and 27.9 at 0.1, about 19 deg per
+#: unit (Calibration.md, "The grains' friction, the second lever of the envelope"). The bond
+#: Friction Angle moved nothing (44-45 deg at 0-60 deg, Calibration.md) and is left at its
+#: start value.
+ENVELOPE_LEVERS = (("BondRange", 25.0, 0.4), ("GrainFriction", 19.0, 0.3))
 
 RECIPE_DEFAULTS = {
     "elements": 600,            # Initial Elements (count)
@@ -113,7 +119,7 @@ RECIPE_DEFAULTS = {
     "bond_range": 1.4,          # x (rA + rB): bonded coordination about 11 (Rock.md)
     "moment_contribution": None,  # start value of beta; None: from the target's UCS / sigma_t (start_levers)
     "strength_scatter": 0.2,
-    "grain_friction": 0.5,
+    "grain_friction": 0.5,      # DEM Pack Source Friction at the start (a lever of the envelope)
     "density": 2650.0,          # kg/m^3
     "strain_per_step": 1e-6,    # platen strain per timestep (Rock.md)
     "timestep_safety": 0.3,
@@ -221,6 +227,10 @@ def validate_recipe(recipe):
         raise _bad("bond_range", r["bond_range"], "valid range [1, 2]")
     if r["moment_contribution"] is not None and not 0.0 <= r["moment_contribution"] <= 1.0:
         raise _bad("moment_contribution", r["moment_contribution"], "valid range [0, 1], or None (from the target)")
+    lo, hi = BRACKETS["GrainFriction"]
+    if isinstance(r["grain_friction"], bool) or not isinstance(r["grain_friction"], (int, float)) or \
+            not lo <= r["grain_friction"] <= hi:
+        raise _bad("grain_friction", r["grain_friction"], "valid range [%g, %g] (the envelope lever's bracket)" % (lo, hi))
     return r
 
 
@@ -534,6 +544,14 @@ def cement_properties(p, recipe):
             "StrengthScatter": recipe["strength_scatter"], "RandomSeed": recipe["seed"]}
 
 
+def specimen_properties(p, recipe):
+    """What a test of the calibration variables p is run with: the DEM Cement properties
+    (cement_properties) and GrainFriction, the DEM Pack Source Friction of the grains
+    (p's, default the recipe's grain_friction). Two tests with equal specimen properties
+    measure the same specimen."""
+    return dict(cement_properties(p, recipe), GrainFriction=p.get("GrainFriction", recipe["grain_friction"]))
+
+
 #: The calibration's ceiling on the stress Compact Elements locks into the pack, as a fraction of
 #: the target's smallest strength (sigma_t, else UCS): DEM Pack Source's Maximum Locked-In
 #: Stress, whose default 2e-6 x Young's Modulus follows the grains' modulus, which the
@@ -606,6 +624,16 @@ class _Bench:
             if proxy is not None:
                 self.simple.Delete(proxy)
         rd = self.rockdem
+        friction = p.get("GrainFriction", self.recipe["grain_friction"])
+        if self.pack_props["Friction"] != friction:
+            # the envelope's second lever (ENVELOPE_LEVERS): the grains' friction is a
+            # property of the pack; its compaction runs frictionless (Compact.cpp), so the
+            # grains are where they were and only their contacts' friction changes
+            self.pack_props["Friction"] = friction
+            self.pack.Friction = friction
+            self.pack.UpdatePipeline()
+            self.packs += 1
+            self.porosity = rd.read_only(self.pack, "CurrentPorosity")
         if self.pack_props["YoungsModulus"] != p["BondModulus"]:
             # The grains' Young's Modulus is tied to the Bond Modulus: the platen contacts
             # and the contacts in parallel with the bonds are grain contacts, so with the
@@ -963,7 +991,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     p = {"BondModulus": e_t or 1e9, "BondStiffnessRatio": 0.4,
          "TensileStrength": (ucs_t / 10.0) if ucs_t else (st_t or 1e6),
          "CohesionRatio": q0, "FrictionAngle": 30.0,
-         "BondRange": float(recipe["bond_range"]), "MomentContribution": beta0}
+         "BondRange": float(recipe["bond_range"]), "MomentContribution": beta0,
+         "GrainFriction": float(recipe["grain_friction"])}
     if beta0 == 0.0 and ucs_t and st_t:
         # at beta 0 the specimen's sigma_t is about the bond Tensile Strength (1.0-1.05 x,
         # Calibration.md), so UCS is about (UCS / sigma_t) x Tensile from the start
@@ -981,7 +1010,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
     def report(stage, kind, result_measured):
         measured.update({k: v for k, v in result_measured.items() if v is not None})
         errs = _errors(target, result_measured)
-        rec = {"test": bench.tests, "stage": stage, "kind": kind, "parameters": cement_properties(p, recipe),
+        rec = {"test": bench.tests, "stage": stage, "kind": kind, "parameters": specimen_properties(p, recipe),
                "measured": dict(result_measured), "errors": errs,
                "bonded_coordination": bench.coordination, "seconds": time.time() - t_start}
         iterations.append(rec)
@@ -998,7 +1027,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         """The latest error of every property, and the properties whose latest measurement
         was made with other cement properties than p's now (stale: a later stage moved a
         lever, e.g. a new Bond Range changes E, nu and the strengths)."""
-        errs, stale, now = {}, set(), cement_properties(p, recipe)
+        errs, stale, now = {}, set(), specimen_properties(p, recipe)
         for rec in iterations:
             for k, v in rec["errors"].items():
                 errs[k] = v
@@ -1186,7 +1215,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
         # ---- 3. envelope ---------------------------------------------------------------
         tri = [rec for rec in iterations if rec["stage"] == "envelope"]
         if env_keys and not (("friction_angle" in unreachable or settled(env_keys)) and tri and
-                             tri[-1]["parameters"] == cement_properties(p, recipe)):
+                             tri[-1]["parameters"] == specimen_properties(p, recipe)):
             # (run unless phi is settled or unreachable and already measured with p as it is)
             # (a Bond Range that nu needed is not the envelope's: phi is then reported as it
             # is, unreachable with its levers held, and nu stays matched)
@@ -1212,7 +1241,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
             break
         # a later stage moved an earlier one's property (or a lever: a new Bond Range
         # changes E, nu and the strengths): go round again from stiffness
-    if tested and cement_properties(p, recipe) != cement_properties(tested, recipe):
+    if tested and specimen_properties(p, recipe) != specimen_properties(tested, recipe):
         # the budget ran out after a step: the result (and the parameter file) keeps the
         # parameters of the latest test, which were measured, not the step's untried ones
         p.clear()
@@ -1240,7 +1269,8 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None):
 
 
 ITERATION_COLUMNS = ("test", "stage", "kind", "BondModulus", "BondStiffnessRatio", "TensileStrength",
-                     "Cohesion", "FrictionAngle", "BondRange", "MomentContribution", "bonded_coordination", "youngs_modulus", "poissons_ratio",
+                     "Cohesion", "FrictionAngle", "BondRange", "MomentContribution", "GrainFriction",
+                     "bonded_coordination", "youngs_modulus", "poissons_ratio",
                      "elastic_youngs_modulus", "failure_poissons_ratio", "ucs", "tensile_strength", "friction_angle",
                      "err_youngs_modulus", "err_poissons_ratio",
                      "err_ucs", "err_tensile_strength", "err_friction_angle", "seconds")

@@ -10,7 +10,9 @@ the number of specimen tests bounded (<= 12); one progress record per test; the 
 the parameter file carries the Bond Range and Moment Contribution (the recipe's here:
 no friction angle, no tensile strength in the target) and rebuilds the calibrated
 specimen (build_specimen: the same bonded coordination, the same seed); verify() on a
-fresh seed measures every target the file names, the friction angle too.
+fresh seed measures every target the file names, the friction angle too; a test with
+another grain Friction (the envelope's second lever) runs on the same grains with that
+friction, and a confined peak falls with it.
 
     pvpython test_calibration.py [OUTPUT_FOLDER]
 """
@@ -78,5 +80,25 @@ c.check(row["seed"] == 4 and set(row["errors"]) == {"youngs_modulus", "ucs", "fr
         "verify, seed 4, with a friction angle in the target: phi %.1f deg (error %+.1f), cohesion %.3g Pa (%.1f s)"
         % (row["measured"]["friction_angle"], row["errors"]["friction_angle"], row["measured"]["cohesion"],
            time.time() - t1))
+# the envelope's second lever, the grains' Friction (ENVELOPE_LEVERS): a test with another
+# GrainFriction re-runs the pack with that DEM Pack Source Friction; the grains stay where
+# they were (the compaction is frictionless: the same porosity) and the confined peak falls
+# with the friction
+import rockdem_calibration  # noqa: E402
+bench = rockdem_calibration.bench_for(doc_phi)
+peaks, porosities = {}, {}
+t1 = time.time()
+try:
+    for mu in (0.5, 0.0):
+        results, _, _ = bench.triaxial(dict(doc["parameters"], GrainFriction=mu), [4e5],
+                                       rockdem_calibration.envelope_strain(doc_phi["target"]))
+        peaks[mu], porosities[mu] = results[0]["peak_axial"], bench.porosity
+        c.check(bench.pack_props["Friction"] == mu and bench.pack.Friction == mu,
+                "grain Friction %g: the pack's Friction follows (%g)" % (mu, bench.pack.Friction))
+finally:
+    bench.close()
+c.check(porosities[0.0] == porosities[0.5] and peaks[0.0] < peaks[0.5],
+        "grain Friction 0.5 -> 0: the same grains (porosity %.6g), confined peak %.4g -> %.4g Pa (%.1f s)"
+        % (porosities[0.0], peaks[0.5], peaks[0.0], time.time() - t1))
 print("total %.1f s" % (time.time() - t0))
 c.finish()

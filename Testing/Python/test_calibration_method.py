@@ -15,6 +15,7 @@ names the unreachable target; bad targets give errors naming key, value and rang
 import math
 import os
 import sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -69,8 +70,9 @@ c.check(all(-1.0 <= s <= 1.0 for s in seen), "every evaluation inside the bracke
 
 # --- 2. the calibration loop on a synthetic specimen -----------------------------------
 # Closed-form relations shaped like the measured ones (Rock.md): the friction angle rises
-# with the Bond Range (41.7 deg at 1.0, 27 deg per unit) and ignores the bond Friction
-# Angle; UCS / sigma_t falls with the Moment Contribution (14 at beta 0, 5.6 at beta 1),
+# with the Bond Range (41.7 deg at 1.0, 27 deg per unit) and with the grains' Friction (19
+# deg per unit, measured on the Berea file over 0-200 MPa, Calibration.md) and ignores the
+# bond Friction Angle; UCS / sigma_t falls with the Moment Contribution (14 at beta 0, 5.6 at beta 1),
 # rises with Cohesion / Tensile q about as q^0.9 (measured at beta 0: 14.2 / 32.0 / 61.4 at
 # q 4 / 10 / 20, Calibration.md), and rises with the Bond Range; E rises with the
 # Bond Range (the coordination), so a new Bond Range moves E and the rounds must re-check it.
@@ -86,13 +88,14 @@ def ratio_of(beta, q, br):
     return (14.0 - 8.4 * beta) * (q / 4.0) ** 0.9 * g_range(br)
 
 
-def phi_of(br):
-    return 41.7 + 27.0 * (br - 1.0)
+def phi_of(br, mu=0.5):
+    return 41.7 + 27.0 * (br - 1.0) + 19.0 * (mu - 0.5)
 
 
 class SyntheticBench:
     """E = 0.6 Eb (1 + 0.5 r) e_range(BR), nu = 0.28 - 0.12 log(1 + r), sigma_t = 0.9 T,
-    UCS = sigma_t ratio_of(beta, q, BR), phi = phi_of(BR) (q = Cohesion / Tensile)."""
+    UCS = sigma_t ratio_of(beta, q, BR), phi = phi_of(BR, GrainFriction) (q = Cohesion /
+    Tensile). Like the real bench, each test puts the grains' friction in pack_props."""
 
     def __init__(self):
         self.tests = 0
@@ -108,20 +111,23 @@ class SyntheticBench:
         nu = 0.28 - 0.12 * math.log(1 + r)
         st = 0.9 * p["TensileStrength"]
         ratio = ratio_of(p["MomentContribution"], p["CohesionRatio"], br)
-        return e, nu, st * ratio, st, phi_of(br)
+        return e, nu, st * ratio, st, phi_of(br, p.get("GrainFriction", 0.5))
 
     def compression(self, p, strain, elastic=False):
         self.tests += 1
+        self.pack_props["Friction"] = p.get("GrainFriction", 0.5)
         e, nu, ucs, st, phi = self.props(p)
         self.coordination = 5.9 + 13.5 * (p["BondRange"] - 1.0)
         return {"E": e, "nu": nu, "ucs": ucs, "history": {}}
 
     def tension(self, p, strain, strain_per_step=None):
         self.tests += 1
+        self.pack_props["Friction"] = p.get("GrainFriction", 0.5)
         return {"tensile_strength": self.props(p)[3], "history": {}}
 
     def triaxial(self, p, confining, strain):
         self.tests += len(confining)
+        self.pack_props["Friction"] = p.get("GrainFriction", 0.5)
         e, nu, ucs, st, phi = self.props(p)
         a, b = ucs, (1 + math.sin(math.radians(phi))) / (1 - math.sin(math.radians(phi)))
         return [{"confining": s, "peak_axial": a + b * s} for s in confining], 0.0, phi
@@ -143,14 +149,20 @@ def chain_solve(levers, goal, p, y_of, tolerance=1e-9, n_max=40):
     return False, n_max, spent
 
 
-p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0}
-ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 50.0, p, lambda q: phi_of(q["BondRange"]))
-c.check(ok and abs(p["BondRange"] - (1 + 8.3 / 27.0)) < 1e-9,
+p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0, "GrainFriction": 0.5}
+ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 50.0, p, lambda q: phi_of(q["BondRange"], q["GrainFriction"]))
+c.check(ok and abs(p["BondRange"] - (1 + 8.3 / 27.0)) < 1e-9 and p["GrainFriction"] == 0.5,
         "phi = 50 deg on Bond Range: %.9g (exact %.9g) in %d evaluations" % (p["BondRange"], 1 + 8.3 / 27.0, n))
-ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 27.8, p, lambda q: phi_of(q["BondRange"]))
-c.check(not ok and p["BondRange"] == 1.0 and spent == {"BondRange"} and n <= 4,
-        "phi = 27.8 deg: Bond Range spent at its bound %g after %d evaluations (closest %.1f deg)"
-        % (p["BondRange"], n, phi_of(p["BondRange"])))
+ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 35.0, p, lambda q: phi_of(q["BondRange"], q["GrainFriction"]))
+mu_35 = 0.5 + (35.0 - 41.7) / 19.0
+c.check(ok and p["BondRange"] == 1.0 and spent == {"BondRange"} and abs(p["GrainFriction"] - mu_35) < 1e-9,
+        "phi = 35 deg (below Bond Range 1's 41.7): Bond Range spent at its bound, then grain Friction %.9g "
+        "(exact %.9g), %d evaluations" % (p["GrainFriction"], mu_35, n))
+ok, n, spent = chain_solve(cal.ENVELOPE_LEVERS, 27.8, p, lambda q: phi_of(q["BondRange"], q["GrainFriction"]))
+c.check(not ok and p["BondRange"] == 1.0 and p["GrainFriction"] == 0.0 and spent == {"BondRange", "GrainFriction"}
+        and n <= 6,
+        "phi = 27.8 deg: both levers spent at their bounds (Bond Range %g, grain Friction %g) after %d "
+        "evaluations (closest %.1f deg)" % (p["BondRange"], p["GrainFriction"], n, phi_of(1.0, 0.0)))
 p = {"BondRange": 1.4, "MomentContribution": 1.0, "CohesionRatio": 4.0}
 ok, n, spent = chain_solve(cal.RATIO_LEVERS, math.log(9.0), p,
                            lambda q: math.log(ratio_of(q["MomentContribution"], q["CohesionRatio"], 1.4)))
@@ -303,7 +315,7 @@ for rec in log:
     for k in rec["errors"]:
         last[k] = rec
 c.check(last["poissons_ratio"]["stage"] == "stiffness" and
-        last["poissons_ratio"]["parameters"] == res["cement"],
+        last["poissons_ratio"]["parameters"] == dict(res["cement"], GrainFriction=0.5),
         "the final nu is an elastic test's, measured with the final parameters (test %d)"
         % last["poissons_ratio"]["test"])
 
@@ -399,15 +411,30 @@ c.check(res["converged"] and res["parameters"]["BondStiffnessRatio"] == r_lo and
         "%.4g (exact %.4g), held %s, errors %s"
         % (res["tests"], res["parameters"]["BondStiffnessRatio"], res["parameters"]["BondRange"], br_nu,
            res["held_levers"], {k: round(v, 4) for k, v in res["errors"].items()}))
-env = dict(nu_high, friction_angle=50.0, confining_stresses=[0.0, 5e6, 1e7])
-res = cal.calibrate(env, {"max_tests": 40}, bench=LowCoordinationBench())
-c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and
-        abs(res["errors"]["poissons_ratio"]) <= 0.03 and abs(res["parameters"]["BondRange"] - br_nu) < 0.03 / 0.4 and
-        abs(res["measured"]["friction_angle"] - phi_of(res["parameters"]["BondRange"])) < 1e-9,
-        "nu = 0.38 with phi = 50 deg: nu kept (error %+.3g) at Bond Range %.4g, phi %.2f deg reported unreachable "
-        "with its lever held by nu, after %d tests"
-        % (res["errors"]["poissons_ratio"], res["parameters"]["BondRange"], res["measured"]["friction_angle"],
-           res["tests"]))
+# ... with a friction angle: the Bond Range is nu's, so the envelope moves the grains'
+# Friction, up (50 deg) or down (38 deg, below what Bond Range 1.1 gives at Friction 0.5,
+# as Berea's over 0-200 MPa); 60 deg is beyond Friction 1 (the bracket's end): unreachable
+for phi_t in (50.0, 38.0, 60.0):
+    env = dict(nu_high, friction_angle=phi_t, confining_stresses=[0.0, 5e6, 1e7])
+    res = cal.calibrate(env, {"max_tests": 60}, bench=LowCoordinationBench())
+    br, mu = res["parameters"]["BondRange"], res["parameters"]["GrainFriction"]
+    mu_exact = 0.5 + (phi_t - phi_of(br)) / 19.0
+    doc_dir = tempfile.mkdtemp()
+    cal.write_outputs(res, doc_dir)
+    doc = cal.load_parameters(os.path.join(doc_dir, "parameters.json"))
+    kept = abs(res["errors"]["poissons_ratio"]) <= 0.03 and abs(br - br_nu) < 0.03 / 0.4 and \
+        res["held_levers"] == {"BondRange": "poissons_ratio"} and doc["pack"]["Friction"] == mu
+    if phi_t < 55.0:
+        c.check(res["converged"] and kept and abs(mu - mu_exact) < 3.0 / 19.0 and res["tests"] <= 60,
+                "nu = 0.38 with phi = %g deg: converged in %d tests, nu error %+.3g at Bond Range %.4g (nu's), "
+                "grain Friction %.4g (exact %.4g), in the parameter file's pack"
+                % (phi_t, res["tests"], res["errors"]["poissons_ratio"], br, mu, mu_exact))
+    else:
+        c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and kept and mu == 1.0 and
+                abs(res["measured"]["friction_angle"] - phi_of(br, 1.0)) < 1e-9,
+                "nu = 0.38 with phi = %g deg: nu kept at Bond Range %.4g, grain Friction at its bracket end %g, "
+                "phi %.2f deg reported unreachable after %d tests"
+                % (phi_t, br, mu, res["measured"]["friction_angle"], res["tests"]))
 
 # the tensile test's rate: TENSION_STEPS_TO_PEAK steps to the expected peak (sigma_t / Bond
 # Modulus; 30 x for a Brazilian disc), never faster than the recipe's strain per step
@@ -455,13 +482,16 @@ c.check(abs(res["errors"]["ucs"]) <= 0.05 and res["parameters"]["MomentContribut
         res["parameters"]["CohesionRatio"] == cal.BRACKETS["CohesionRatio"][1],
         "unreachable ratio: UCS still matched, beta %g and Cohesion / Tensile %g at their brackets' ends"
         % (res["parameters"]["MomentContribution"], res["parameters"]["CohesionRatio"]))
-# unreachable friction angle: 27.8 deg (Berea) on a model whose lowest is 41.7 at Bond Range 1
+# unreachable friction angle: 27.8 deg on a model whose lowest is 32.2 at Bond Range 1 and
+# grain Friction 0 (both levers at their brackets' ends)
 res = cal.calibrate({"friction_angle": 27.8, "confining_stresses": [0.0, 5e6, 1e7]}, {"max_tests": 30},
                     bench=SyntheticBench())
-c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and res["tests"] <= 12 and
-        res["parameters"]["BondRange"] == 1.0 and abs(res["measured"]["friction_angle"] - 41.7) < 1e-9,
-        "phi = 27.8 deg: unreachable after %d tests, Bond Range %g, closest phi %.2f deg (exact 41.7)"
-        % (res["tests"], res["parameters"]["BondRange"], res["measured"]["friction_angle"]))
+c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and res["tests"] <= 18 and
+        res["parameters"]["BondRange"] == 1.0 and res["parameters"]["GrainFriction"] == 0.0 and
+        abs(res["measured"]["friction_angle"] - phi_of(1.0, 0.0)) < 1e-9,
+        "phi = 27.8 deg: unreachable after %d tests, Bond Range %g, grain Friction %g, closest phi %.2f deg "
+        "(exact %.2f)" % (res["tests"], res["parameters"]["BondRange"], res["parameters"]["GrainFriction"],
+                          res["measured"]["friction_angle"], phi_of(1.0, 0.0)))
 # a friction angle alone (no E, no UCS) is calibrated too
 res = cal.calibrate({"friction_angle": 40.0, "confining_stresses": [0.0, 5e6, 1e7]}, {}, bench=SyntheticBench())
 c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
@@ -473,7 +503,7 @@ for budget in (11, 12):
     c.check(r["tests"] <= budget, "budget of %d tests: %d run" % (budget, r["tests"]))
 c.check(not res["converged"] and res["tests"] <= 3 and res["not_within"],
         "budget of 3 tests: stops after %d, not within %s" % (res["tests"], res["not_within"]))
-c.check(res["cement"] == res["iterations"][-1]["parameters"],
+c.check(dict(res["cement"], GrainFriction=res["parameters"]["GrainFriction"]) == res["iterations"][-1]["parameters"],
         "budget spent: the result keeps the parameters of the latest test (measured), not an untried step")
 
 # --- 3. bad targets: key, value and range in the message --------------------------------
@@ -523,7 +553,7 @@ except cal.CalibrationError as e:
 
 # --- 4. parameter file round trip and its errors -----------------------------------------
 import json  # noqa: E402
-import tempfile  # noqa: E402
+
 folder = tempfile.mkdtemp()
 res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 50e6, "tensile_strength": 12e6}, {}, bench=SyntheticBench())
 cal.write_outputs(res, folder)
