@@ -2,11 +2,13 @@
 
     pvpython examples/calibrate_granite.py [--rock lac_du_bonnet_granite] [--elements 600]
         [--max-tests 30] [--only E,nu,UCS,sigma_t,phi] [--verify 2,3,4] [--output results/calibration]
-        [--strain-per-step 1e-6] [--tensile-test direct|brazilian]
+        [--strain-per-step 1e-6] [--tensile-test direct|brazilian] [--start PARAMETERS.json]
+        [--envelope-rate uniform|inertial]
 
 Loads the preset Data/rocks/<rock>.json (Lac du Bonnet granite by default; also
 berea_sandstone; --tensile-test brazilian takes the preset's Brazilian strength and
-calibrates it on a Brazilian disc carved from the cemented specimen), runs
+calibrates it on a Brazilian disc carved from the cemented specimen; --start starts from an
+earlier calibration's parameter file, e.g. after the target changed), runs
 rockdem.calibrate on one compacted specimen of the given size and prints every specimen
 test as it finishes (parameters tried, properties measured, errors).
 Writes in the output folder: iterations.csv, parameters.json (rockdem.load_parameters /
@@ -43,6 +45,11 @@ def main():
     parser.add_argument("--tensile-test", default=None, choices=("direct", "brazilian"),
                         help="which of the preset's tensile strengths to calibrate, and by which test "
                              "(default: the preset's own, direct for both presets)")
+    parser.add_argument("--envelope-rate", default=None, choices=("uniform", "inertial"),
+                        help="the triaxial tests' strain per step: uniform (the default), or inertial (each at "
+                             "the unconfined test's inertial number, faster under high confinement)")
+    parser.add_argument("--start", default=None,
+                        help="an earlier calibration's parameters.json to start from (rockdem.calibrate's start)")
     args = parser.parse_args()
     plugin = os.environ.get("ROCKDEM_PLUGIN") or os.path.join(
         SOURCE_DIR, "build", "lib", "paraview-plugins", "RockDEM", "RockDEM.so")
@@ -68,9 +75,9 @@ def main():
     def progress(rec):
         m, e, p = rec["measured"], rec["errors"], rec["parameters"]
         print("test %2d %-9s Eb %.4g Pa, ks/kn %.3g, T %.4g Pa, C %.4g Pa, phi_b %.1f, range %.3f, beta %.3f, "
-              "coordination %.2f | %s | errors %s | %.0f s"
+              "grain friction %.3g, coordination %.2f | %s | errors %s | %.0f s"
               % (rec["test"], rec["stage"], p["BondModulus"], p["BondStiffnessRatio"], p["TensileStrength"],
-                 p["Cohesion"], p["FrictionAngle"], p["BondRange"], p["MomentContribution"],
+                 p["Cohesion"], p["FrictionAngle"], p["BondRange"], p["MomentContribution"], p["GrainFriction"],
                  rec["bonded_coordination"],
                  ", ".join("%s %.4g" % (k, v) for k, v in m.items() if isinstance(v, float)),
                  ", ".join("%s %+.3g" % (k, v) for k, v in e.items()), rec["seconds"]), flush=True)
@@ -78,8 +85,10 @@ def main():
     recipe = {"elements": args.elements, "seed": args.seed, "max_tests": args.max_tests}
     if args.strain_per_step is not None:
         recipe["strain_per_step"] = args.strain_per_step
+    if args.envelope_rate is not None:
+        recipe["envelope_rate"] = args.envelope_rate
     result = rockdem.calibrate(target, recipe,
-                               progress=progress, output=args.output)
+                               progress=progress, output=args.output, start=args.start)
     print("specimen: %d grains, porosity %.3f, bonded coordination %.2f"
           % (result["elements"], result["porosity"], result["bonded_coordination"]))
     print("%s: %s after %d specimen tests in %.0f s; unreachable: %s; not within tolerance: %s; "
@@ -91,9 +100,9 @@ def main():
         print("  %s was moved for %s and held there (not an envelope lever in this calibration)" % (lever, prop))
     c = result["cement"]
     print("calibrated: Bond Modulus %.4g Pa, Bond Stiffness Ratio %.4g, Tensile %.4g Pa, Cohesion %.4g Pa, "
-          "Bond Range %.4g, Moment Contribution %.4g" % (c["BondModulus"], c["BondStiffnessRatio"],
-                                                         c["TensileStrength"], c["Cohesion"], c["BondRange"],
-                                                         c["MomentContribution"]))
+          "Bond Range %.4g, Moment Contribution %.4g, grain Friction %.4g"
+          % (c["BondModulus"], c["BondStiffnessRatio"], c["TensileStrength"], c["Cohesion"], c["BondRange"],
+             c["MomentContribution"], result["parameters"]["GrainFriction"]))
     for key in ("youngs_modulus", "poissons_ratio", "ucs", "tensile_strength", "friction_angle"):
         if key in target:
             print("  %-17s target %-10.4g measured %-10.4g error %+.3g (tolerance %g)"

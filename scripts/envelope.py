@@ -48,8 +48,10 @@ def main():
     bench = cal.bench_for(doc, target, args.seed)
     t0 = time.time()
     try:
+        # the file's own rates for its own confining stresses (envelope_rate 'inertial')
+        rates = doc["test"].get("envelope_strain_per_step") if args.confining is None else None
         results, cohesion, phi = bench.triaxial(doc["parameters"], target["confining_stresses"],
-                                                cal.envelope_strain(target))
+                                                cal.envelope_strain(target), rates)
     finally:
         bench.close()
     for r in results:

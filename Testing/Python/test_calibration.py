@@ -69,7 +69,7 @@ c.check(rockdem.read_only(cement, "Bonds") > 0 and abs(rockdem.read_only(cement,
 # verify() on a fresh seed checks every target the file names, the friction angle too
 # (the envelope stage's triaxial tests at the target's confining stresses)
 # (two confining stresses; the target's E and UCS set how far the triaxial tests press,
-# 8 x UCS / E, Calibration.md)
+# envelope_strain, Calibration.md)
 doc_phi = dict(doc, target=dict(doc["target"], friction_angle=45.0, confining_stresses=[0.0, 4e5]),
                tolerances=dict(doc["tolerances"], friction_angle=3.0))
 t1 = time.time()

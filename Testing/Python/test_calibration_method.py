@@ -14,6 +14,7 @@ names the unreachable target; bad targets give errors naming key, value and rang
 """
 import math
 import os
+import json
 import sys
 import tempfile
 
@@ -125,7 +126,7 @@ class SyntheticBench:
         self.pack_props["Friction"] = p.get("GrainFriction", 0.5)
         return {"tensile_strength": self.props(p)[3], "history": {}}
 
-    def triaxial(self, p, confining, strain):
+    def triaxial(self, p, confining, strain, strains_per_step=None):
         self.tests += len(confining)
         self.pack_props["Friction"] = p.get("GrainFriction", 0.5)
         e, nu, ucs, st, phi = self.props(p)
@@ -436,6 +437,65 @@ for phi_t in (50.0, 38.0, 60.0):
                 "phi %.2f deg reported unreachable after %d tests"
                 % (phi_t, br, mu, res["measured"]["friction_angle"], res["tests"]))
 
+# the triaxial tests' Max Strain: 8 x UCS / E, or 3 x the target envelope's peak deviator at
+# the largest confining stress over E when more (Berea over 0-200 MPa); the granite's as before
+granite_env = cal.load_rock("lac_du_bonnet_granite")
+berea_env = cal.load_rock("berea_sandstone")
+b_berea = (1 + math.sin(math.radians(27.8))) / (1 - math.sin(math.radians(27.8)))
+c.check(abs(cal.envelope_strain(granite_env) - 8 * 200e6 / 69e9) < 1e-15 and
+        berea_env["confining_stresses"] == [0.0, 50e6, 100e6, 200e6] and
+        abs(cal.envelope_strain(berea_env) - 3 * (73.8e6 + (b_berea - 1) * 200e6) / 19.3e9) < 1e-15 and
+        cal.envelope_strain({"friction_angle": 30.0, "confining_stresses": [0.0, 1e6]}) == 0.005,
+        "envelope Max Strain: granite %.4g (8 UCS / E), Berea over 0-200 MPa %.4g (3 x its deviator at 200 MPa / E)"
+        % (cal.envelope_strain(granite_env), cal.envelope_strain(berea_env)))
+
+# the triaxial tests' rates: uniform by default; 'inertial' keeps the inertial number of the
+# unconfined test, sqrt of the target envelope's mean stress at the peak (Berea at 200 MPa:
+# sigma1 = 73.8 + 2.75 x 200 = 623.8 MPa, p = 341 MPa against 24.6: 3.72 x)
+uniform = cal.envelope_strains_per_step(berea_env, cal.validate_recipe({"strain_per_step": 1e-7}))
+inertial = cal.envelope_strains_per_step(berea_env, cal.validate_recipe({"strain_per_step": 1e-7,
+                                                                         "envelope_rate": "inertial"}))
+p200 = (73.8e6 + (b_berea + 2) * 200e6) / 3
+c.check(uniform == [1e-7] * 4 and inertial[0] == 1e-7 and
+        abs(inertial[3] / 1e-7 - math.sqrt(p200 / (73.8e6 / 3))) < 1e-12 and inertial == sorted(inertial) and
+        cal.envelope_strains_per_step({"friction_angle": 30.0, "confining_stresses": [0.0, 1e6]},
+                                      cal.validate_recipe({"envelope_rate": "inertial"})) == [1e-6, 1e-6],
+        "envelope rates for Berea at 1e-7: uniform %s; inertial %s" % (uniform, ["%.3g" % x for x in inertial]))
+try:
+    cal.validate_recipe({"envelope_rate": "fast"})
+    c.check(False, "envelope_rate 'fast' accepted")
+except cal.CalibrationError as e:
+    c.check("envelope_rate" in str(e) and "'fast'" in str(e) and "'inertial'" in str(e), "bad envelope_rate: %s" % e)
+
+# a start from an earlier calibration (start=, its parameter file): the target's friction
+# angle changed from 50 to 38 deg; the start's nu, E and strengths are within tolerance, so
+# each stage measures once and the envelope moves the grain Friction alone; the Bond Range
+# stays nu's (the file's held_levers)
+first = cal.calibrate(dict(nu_high, friction_angle=50.0, confining_stresses=[0.0, 5e6, 1e7]), {"max_tests": 60},
+                      bench=LowCoordinationBench())
+first_dir = tempfile.mkdtemp()
+cal.write_outputs(first, first_dir)
+res = cal.calibrate(dict(nu_high, friction_angle=38.0, confining_stresses=[0.0, 5e6, 1e7]), {"max_tests": 60},
+                    bench=LowCoordinationBench(), start=os.path.join(first_dir, "parameters.json"))
+c.check(first["converged"] and res["converged"] and res["tests"] < first["tests"] and
+        res["parameters"]["BondRange"] == first["parameters"]["BondRange"] and
+        res["held_levers"] == {"BondRange": "poissons_ratio"} and res["iterations"][0]["parameters"] ==
+        cal.specimen_properties(first["parameters"], cal.validate_recipe({})) and
+        res["start"] == os.path.join(first_dir, "parameters.json"),
+        "start from an earlier calibration (phi 50 -> 38 deg): converged in %d tests (from scratch %d), first test "
+        "on the file's parameters, Bond Range %.4g kept (held for nu), grain Friction %.3g -> %.3g"
+        % (res["tests"], first["tests"], res["parameters"]["BondRange"], first["parameters"]["GrainFriction"],
+           res["parameters"]["GrainFriction"]))
+for bad_start, words in (({"BondRange": 2.5}, ("start.parameters.BondRange", "2.5", "[1, 2]")),
+                         ({"GrainFriction": -0.1}, ("start.parameters.GrainFriction", "-0.1", "[0, 1]"))):
+    doc = json.load(open(os.path.join(first_dir, "parameters.json")))
+    doc["parameters"].update(bad_start)
+    try:
+        cal.calibrate(nu_high, {}, bench=LowCoordinationBench(), start=doc)
+        c.check(False, "start %s accepted" % bad_start)
+    except cal.CalibrationError as e:
+        c.check(all(w in str(e) for w in words), "bad start %s: %s" % (bad_start, e))
+
 # the tensile test's rate: TENSION_STEPS_TO_PEAK steps to the expected peak (sigma_t / Bond
 # Modulus; 30 x for a Brazilian disc), never faster than the recipe's strain per step
 rec = cal.validate_recipe({"strain_per_step": 1e-7})
@@ -552,7 +612,6 @@ except cal.CalibrationError as e:
     c.check("elements" in str(e) and "3" in str(e) and "[10, 200000]" in str(e), "bad recipe: %s" % e)
 
 # --- 4. parameter file round trip and its errors -----------------------------------------
-import json  # noqa: E402
 
 folder = tempfile.mkdtemp()
 res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 50e6, "tensile_strength": 12e6}, {}, bench=SyntheticBench())
