@@ -771,15 +771,21 @@ class _Bench:
         result["failed"] = failed
         return result
 
-    def triaxial(self, p, confining, max_strain, strains_per_step=None):
+    def triaxial(self, p, confining, max_strain, strains_per_step=None, known=None):
         """Peaks at each confining stress on one cemented model and their Mohr-Coulomb fit.
         A confining stress of 0 is an unconfined compression (DEM Load Test's Triaxial
         mode needs a Confining Stress > 0). strains_per_step: the platen strain per step
-        of each test (envelope_strains_per_step); None: the recipe's for all."""
+        of each test (envelope_strains_per_step); None: the recipe's for all. known:
+        {confining stress: (peak, history)} measured already on this specimen at that
+        rate (the strength stage's UCS): taken as it is, not run again."""
         rd = self.rockdem
         model = self._cemented(p)
         results = []
         for i, s3 in enumerate(confining):
+            if known and s3 in known:
+                peak, history = known[s3]
+                results.append({"confining": float(s3), "peak_axial": peak, "history": history, "reused": True})
+                continue
             self.tests += 1
             sps = strains_per_step[i] if strains_per_step else None
             if s3 == 0:
@@ -922,6 +928,17 @@ def envelope_strains_per_step(target, recipe):
     return [sps * math.sqrt((ucs + b * s3 + 2.0 * s3) / ucs) for s3 in confining]
 
 
+def reused_ucs(confining, rates, strain_per_step, ucs):
+    """The envelope's known peaks ({0.0: (peak, history)}, Bench.triaxial's known) when its
+    confining stresses hold 0 and the unconfined compression ucs = (peak, history), run on
+    the same specimen at strain_per_step, ran at the rate the envelope would run it at
+    (rates: its strains per step, None for strain_per_step); else None."""
+    if ucs is None or 0.0 not in confining:
+        return None
+    rate = rates[list(confining).index(0.0)] if rates else strain_per_step
+    return {0.0: ucs} if rate == strain_per_step else None
+
+
 def test_strains(target):
     """The Max Strains the calibration runs its tests to for a target (a dict of
     TARGET_KEYS, or a parameter file's 'target'): {'elastic': ..., 'ucs': ..., 'tension':
@@ -986,8 +1003,11 @@ def verify(parameters, seeds=(2, 3, 4), progress=None):
                 rates = doc["test"].get("envelope_strain_per_step")
                 if rates is not None and len(rates) != len(target["confining_stresses"]):
                     rates = None
+                # the unconfined peak is the compression's above when it ran at the same rate
+                known = reused_ucs(target["confining_stresses"], rates, doc["test"]["strain_per_step"],
+                                   (rc["ucs"], rc["history"]) if "ucs" in target else None)
                 _, m["cohesion"], m["friction_angle"] = bench.triaxial(
-                    doc["parameters"], target["confining_stresses"], envelope_strain(target), rates)
+                    doc["parameters"], target["confining_stresses"], envelope_strain(target), rates, known)
             rec = {"seed": int(seed), "measured": m, "errors": _errors(target, m),
                    "bonded_coordination": bench.coordination, "porosity": bench.porosity}
         finally:
@@ -1316,11 +1336,20 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None, start
             f_chain = LeverChain([lv for lv in ENVELOPE_LEVERS if lv[0] not in claimed],
                                  target["friction_angle"], p, spent["friction_angle"])
             confining = list(target["confining_stresses"])
-            while bench.tests + len(confining) <= max_tests:
-                results, coh, phi = bench.triaxial(p, confining, envelope_strain(target),
-                                                   envelope_strains_per_step(target, recipe))
+            rates = envelope_strains_per_step(target, recipe)
+            while True:
+                # the unconfined peak is the latest compression to failure's when that was
+                # measured on the specimen as it is now (the strength stage just before)
+                last = next((rec for rec in reversed(iterations) if "ucs" in rec["measured"]), None)
+                known = reused_ucs(confining, rates, recipe["strain_per_step"],
+                                   (last["measured"]["ucs"], histories.get("ucs"))
+                                   if last and last["parameters"] == specimen_properties(p, recipe) else None)
+                if bench.tests + len(confining) - len(known or {}) > max_tests:
+                    break
+                results, coh, phi = bench.triaxial(p, confining, envelope_strain(target), rates, known)
                 histories["triaxial"] = results
-                errs = report("envelope", "triaxial x %d" % len(confining),
+                errs = report("envelope", "triaxial x %d" % (len(confining) - len(known or {})) +
+                              (" + the strength stage's unconfined peak" if known else ""),
                               {"friction_angle": phi, "cohesion": coh,
                                "triaxial_peaks": [r["peak_axial"] for r in results]})
                 if "friction_angle" not in errs:
