@@ -97,7 +97,8 @@ def main():
              result["tests"], result["seconds"], ", ".join(result["unreachable"]) or "none",
              ", ".join(result["not_within"]) or "none", ", ".join(result["stale"]) or "none"))
     for lever, prop in sorted(result["held_levers"].items()):
-        print("  %s was moved for %s and held there (not an envelope lever in this calibration)" % (lever, prop))
+        print("  %s was moved for %s and held there (the envelope's next lever, the grains' Friction, "
+              "moved instead)" % (lever, prop))
     c = result["cement"]
     print("calibrated: Bond Modulus %.4g Pa, Bond Stiffness Ratio %.4g, Tensile %.4g Pa, Cohesion %.4g Pa, "
           "Bond Range %.4g, Moment Contribution %.4g, grain Friction %.4g"
