@@ -872,6 +872,13 @@ def _ucs_strain(target):
     return min(0.03, max(0.005, 6.0 * target.get("ucs", 0.0) / target.get("youngs_modulus", 1e300)))
 
 
+def passive_ratio(friction_angle):
+    """b = (1 + sin phi) / (1 - sin phi) of a Mohr-Coulomb envelope sigma1 = a + b sigma3
+    (phi in degrees)."""
+    s = math.sin(math.radians(friction_angle))
+    return (1.0 + s) / (1.0 - s)
+
+
 def envelope_strain(target):
     """Max Strain of the envelope stage's triaxial tests (-): 8 x UCS / E, or, when more,
     3 x the peak deviator stress the target's envelope gives at its largest confining
@@ -884,8 +891,7 @@ def envelope_strain(target):
     ucs, e = target.get("ucs") or 0.0, target.get("youngs_modulus") or 1e300
     strain = 8.0 * ucs / e
     if "friction_angle" in target and target.get("confining_stresses"):
-        sin_phi = math.sin(math.radians(target["friction_angle"]))
-        b = (1.0 + sin_phi) / (1.0 - sin_phi)
+        b = passive_ratio(target["friction_angle"])
         strain = max(strain, 3.0 * (ucs + (b - 1.0) * max(target["confining_stresses"])) / e)
     return min(0.1, max(0.005, strain))
 
@@ -922,8 +928,7 @@ def envelope_strains_per_step(target, recipe):
     confining = list(target.get("confining_stresses") or [])
     if recipe["envelope_rate"] == "uniform" or not target.get("ucs") or "friction_angle" not in target:
         return [sps] * len(confining)
-    sin_phi = math.sin(math.radians(target["friction_angle"]))
-    b = (1.0 + sin_phi) / (1.0 - sin_phi)
+    b = passive_ratio(target["friction_angle"])
     ucs = target["ucs"]
     return [sps * math.sqrt((ucs + b * s3 + 2.0 * s3) / ucs) for s3 in confining]
 
@@ -1519,7 +1524,7 @@ def _mohr_coulomb_line_from(target):
     """(a, b) of the target envelope sigma1 = a + b sigma3: b from the friction angle, a
     from the UCS (or from the cohesion when given)."""
     s = math.sin(math.radians(target["friction_angle"]))
-    b = (1.0 + s) / (1.0 - s)
+    b = passive_ratio(target["friction_angle"])
     if "cohesion" in target:
         a = 2.0 * target["cohesion"] * math.cos(math.radians(target["friction_angle"])) / (1.0 - s)
     else:
