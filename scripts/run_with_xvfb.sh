@@ -15,7 +15,8 @@
 # - the server is stopped (and waited for) when the command ends, however it ends.
 # The command's output goes to this script's output, its exit status is returned. A server
 # that does not come up within 20 s, or a command that fails because it could not reach
-# the display, is retried (3 attempts in all); any other failure is returned as is.
+# the display, is retried (5 attempts in all; the server's own messages are shown when it
+# does not start); any other failure is returned as is.
 set -u
 screen="${ROCKDEM_XVFB_SCREEN:-1280x1024x24}"
 xvfb_pid=""
@@ -37,10 +38,14 @@ if ! command -v Xvfb > /dev/null; then
   exit 127
 fi
 
-for attempt in 1 2 3; do
+attempts=5
+for attempt in $(seq "$attempts"); do
   numberfile=$(mktemp)
-  # fd 3 carries the display number once the server accepts connections.
-  Xvfb -displayfd 3 -screen 0 "$screen" -nolisten tcp 3> "$numberfile" < /dev/null > /dev/null 2>&1 &
+  xvfblog=$(mktemp)
+  # fd 3 carries the display number once the server accepts connections; the server's own
+  # messages go to a file of their own (never to the command's output pipe) and are shown
+  # when it does not come up.
+  Xvfb -displayfd 3 -screen 0 "$screen" -nolisten tcp 3> "$numberfile" < /dev/null > "$xvfblog" 2>&1 &
   xvfb_pid=$!
   display=""
   for _ in $(seq 200); do
@@ -52,19 +57,23 @@ for attempt in 1 2 3; do
   done
   rm -f "$numberfile"
   if [ -z "$display" ] || ! kill -0 "$xvfb_pid" 2> /dev/null; then
-    echo "run_with_xvfb: Xvfb did not start on attempt $attempt, retrying" >&2
+    echo "run_with_xvfb: Xvfb did not start on attempt $attempt of $attempts; it said:" >&2
+    tail -n 5 "$xvfblog" | sed 's/^/  /' >&2
+    rm -f "$xvfblog"
     stop_xvfb
-    sleep 1
+    # Servers started at the same moment (ctest --parallel) retry at different moments.
+    sleep "$attempt.$((RANDOM % 10))"
     continue
   fi
+  rm -f "$xvfblog"
   log=$(mktemp)
   DISPLAY=":$display" "$@" 2>&1 | tee "$log"
   rc=${PIPESTATUS[0]}
   if [ "$rc" -ne 0 ] && grep -q -E "bad X server connection|cannot open display|Can't open display" "$log"; then
-    echo "run_with_xvfb: the command could not reach display :$display on attempt $attempt, retrying" >&2
+    echo "run_with_xvfb: the command could not reach display :$display on attempt $attempt of $attempts, retrying" >&2
     rm -f "$log"
     stop_xvfb
-    sleep 1
+    sleep "$attempt.$((RANDOM % 10))"
     continue
   fi
   rm -f "$log"
