@@ -347,6 +347,31 @@ c.check(res["converged"] and res["parameters"]["MomentContribution"] == 0.0 and
                        q_exact, {k: round(v, 4) for k, v in res["errors"].items()}))
 
 
+class OffRatioBench(SyntheticBench):
+    """UCS 1.55 x the synthetic one at every q: the start relation (RATIO_AT_BETA0) is off
+    the way it was on the 5,000-grain Berea (ratio 98 measured where 63 was aimed at)."""
+    @staticmethod
+    def props(p):
+        e, nu, ucs, st, phi = SyntheticBench.props(p)
+        return e, nu, 1.55 * ucs, st, phi
+
+
+# a step of Cohesion / Tensile holds UCS: the Tensile Strength moves by the inverse of the
+# step's UCS factor (q^0.9), so the step lands on sigma_t and UCS stays in its band (with
+# q alone it took 10 tests, UCS leaving its band on the q step)
+res = cal.calibrate({"youngs_modulus": 20e9, "ucs": 73.8e6, "tensile_strength": 1.17e6}, {"max_tests": 30},
+                    bench=OffRatioBench())
+q_steps = [(a, b) for a, b in zip(res["iterations"], res["iterations"][1:])
+           if a["stage"] == b["stage"] == "strength" and
+           abs(b["parameters"]["Cohesion"] / b["parameters"]["TensileStrength"] /
+               (a["parameters"]["Cohesion"] / a["parameters"]["TensileStrength"]) - 1) > 1e-9]
+c.check(res["converged"] and res["tests"] <= 8 and q_steps and
+        all(abs(b["errors"]["ucs"]) <= 0.05 for a, b in q_steps),
+        "ratio 1.55 x the start relation's: converged in %d tests (at most 8); UCS after each of the %d "
+        "Cohesion / Tensile steps: %s" % (res["tests"], len(q_steps),
+                                           ["%+.1f %%" % (100 * b["errors"]["ucs"]) for a, b in q_steps]))
+
+
 class DamagedBench(SyntheticBench):
     """The granite at beta 0 and high Cohesion / Tensile (5,000 grains, Calibration.md): the
     failure test's E is 0.27 x the elastic one (damage long before the peak), and UCS
