@@ -108,6 +108,13 @@ MIDDLE_FRACTION = 0.8
 #: Friction Angle moved nothing (44-45 deg at 0-60 deg, Calibration.md) and is left at its
 #: start value.
 ENVELOPE_LEVERS = (("BondRange", 25.0, 0.4), ("GrainFriction", 19.0, 0.3))
+#: The grains' Friction of a recipe that sets none and of a target without a friction angle.
+GRAIN_FRICTION = 0.5
+#: The lowest friction angle the first envelope lever reaches at GRAIN_FRICTION: at Bond
+#: Range 1.0 (its bracket end), measured on the 5,000-grain Berea, 35.6-35.8 deg over 0-200
+#: MPa (at 1e-6 and 1e-7 platen strain per step) and 38.4 over 0-20 MPa (Calibration.md,
+#: "The grains' friction, the second lever of the envelope"); Rock.md's 41.7 on a denser pack.
+PHI_AT_LOWEST_RANGE = 36.0
 
 RECIPE_DEFAULTS = {
     "elements": 600,            # Initial Elements (count)
@@ -119,7 +126,7 @@ RECIPE_DEFAULTS = {
     "bond_range": 1.4,          # x (rA + rB): bonded coordination about 11 (Rock.md)
     "moment_contribution": None,  # start value of beta; None: from the target's UCS / sigma_t (start_levers)
     "strength_scatter": 0.2,
-    "grain_friction": 0.5,      # DEM Pack Source Friction at the start (a lever of the envelope)
+    "grain_friction": None,     # DEM Pack Source Friction at the start (a lever of the envelope); None: start_grain_friction
     "density": 2650.0,          # kg/m^3
     "strain_per_step": 1e-6,    # platen strain per timestep (Rock.md)
     "envelope_rate": "uniform",  # the triaxial tests' strain per step: ENVELOPE_RATES
@@ -240,10 +247,30 @@ def validate_recipe(recipe):
     if r["envelope_rate"] not in ENVELOPE_RATES:
         raise _bad("envelope_rate", r["envelope_rate"], "one of %s" % ", ".join(repr(k) for k in ENVELOPE_RATES))
     lo, hi = BRACKETS["GrainFriction"]
-    if isinstance(r["grain_friction"], bool) or not isinstance(r["grain_friction"], (int, float)) or \
-            not lo <= r["grain_friction"] <= hi:
-        raise _bad("grain_friction", r["grain_friction"], "valid range [%g, %g] (the envelope lever's bracket)" % (lo, hi))
+    if r["grain_friction"] is not None and (
+            isinstance(r["grain_friction"], bool) or not isinstance(r["grain_friction"], (int, float)) or
+            not lo <= r["grain_friction"] <= hi):
+        raise _bad("grain_friction", r["grain_friction"],
+                   "valid range [%g, %g] (the envelope lever's bracket), or None (from the target)" % (lo, hi))
     return r
+
+
+def start_grain_friction(target, recipe):
+    """The grains' Friction a calibration starts at: the recipe's grain_friction when it sets
+    one; else GRAIN_FRICTION, or, for a target whose friction angle is below what the
+    envelope's first lever reaches (PHI_AT_LOWEST_RANGE at Bond Range 1.0), less by the
+    second lever's slope guess (ENVELOPE_LEVERS: 19 deg per unit), within its bracket. A
+    start there saves the envelope's first triaxial set and the strength stage's second
+    pass that the friction's move would cost (Berea over 0-200 MPa, phi 27.8 deg: 35.8 at
+    0.5, the lever's step to 0.2, then 4 strength records for the UCS that moved with it:
+    2,440 s of 6,001; Calibration.md)."""
+    if recipe.get("grain_friction") is not None:
+        return float(recipe["grain_friction"])
+    phi = target.get("friction_angle")
+    if phi is None or phi >= PHI_AT_LOWEST_RANGE:
+        return GRAIN_FRICTION
+    slope = dict((lv[0], lv[1]) for lv in ENVELOPE_LEVERS)["GrainFriction"]
+    return max(BRACKETS["GrainFriction"][0], GRAIN_FRICTION - (PHI_AT_LOWEST_RANGE - phi) / slope)
 
 
 # ---------------------------------------------------------------------------------------
@@ -972,6 +999,8 @@ def bench_for(doc, target=None, seed=None):
     # the pack is built with the calibrated grain friction (files before the seventeenth
     # session: their pack's), not re-run for it at the first test
     recipe["grain_friction"] = doc["parameters"].get("GrainFriction", doc["pack"].get("Friction", recipe["grain_friction"]))
+    if recipe["grain_friction"] is None:
+        recipe["grain_friction"] = GRAIN_FRICTION
     return _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
 
 
@@ -1089,6 +1118,7 @@ def calibrate(target, recipe=None, progress=None, output=None, bench=None, start
     histories = {}
 
     started, held = start_parameters(start) if start is not None else (None, {})
+    recipe["grain_friction"] = start_grain_friction(target, recipe)
     if started:
         # the envelope's second lever starts where the earlier calibration left it (and
         # the pack is built with it)

@@ -592,6 +592,24 @@ c.check(not res["converged"] and res["unreachable"] == ["friction_angle"] and re
         "phi = 27.8 deg: unreachable after %d tests, Bond Range %g, grain Friction %g, closest phi %.2f deg "
         "(exact %.2f)" % (res["tests"], res["parameters"]["BondRange"], res["parameters"]["GrainFriction"],
                           res["measured"]["friction_angle"], phi_of(1.0, 0.0)))
+# the grains' Friction a calibration starts at (start_grain_friction): the recipe's; else
+# 0.5, less by the second lever's slope (19 deg per unit) below the 36 deg that Bond Range
+# 1.0 reaches at 0.5, within [0, 1]; calibrate() records it in the recipe it returns
+sgf = cal.start_grain_friction
+berea_mu = 0.5 - (36.0 - 27.8) / 19.0
+c.check(abs(sgf({"friction_angle": 27.8}, {"grain_friction": None}) - berea_mu) < 1e-12 and
+        sgf({"friction_angle": 59.0}, {"grain_friction": None}) == 0.5 and sgf({}, {"grain_friction": None}) == 0.5 and
+        sgf({"friction_angle": 27.8}, {"grain_friction": 0.3}) == 0.3 and
+        sgf({"friction_angle": 20.0}, {"grain_friction": None}) == 0.0 and
+        cal.validate_recipe({})["grain_friction"] is None,
+        "start grain Friction: %.4f for phi 27.8 deg (Berea), 0.5 for 59 deg and without phi, the recipe's when set, "
+        "0 (the bracket's end) for 20 deg" % berea_mu)
+res = cal.calibrate({"friction_angle": 30.0, "confining_stresses": [0.0, 5e6, 1e7]}, {"max_tests": 30},
+                    bench=SyntheticBench())
+c.check(abs(res["recipe"]["grain_friction"] - (0.5 - 6.0 / 19.0)) < 1e-12 and
+        res["iterations"][0]["parameters"]["GrainFriction"] == res["recipe"]["grain_friction"],
+        "phi = 30 deg: the first test ran at the start grain Friction %.4f, which the result's recipe records"
+        % res["recipe"]["grain_friction"])
 # a friction angle alone (no E, no UCS) is calibrated too
 res = cal.calibrate({"friction_angle": 40.0, "confining_stresses": [0.0, 5e6, 1e7]}, {}, bench=SyntheticBench())
 c.check(res["converged"] and abs(res["errors"]["friction_angle"]) <= 3.0,
