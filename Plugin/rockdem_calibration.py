@@ -627,6 +627,9 @@ class _Bench:
         self.recipe = recipe
         self.target = target
         self.log = log
+        if recipe.get("grain_friction") is None:
+            # (a recipe that leaves it to the target: calibrate() resolves it before)
+            recipe["grain_friction"] = start_grain_friction(target, recipe)
         n = recipe["elements"]
         size = recipe["size"]
         if size is None:
