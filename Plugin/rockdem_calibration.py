@@ -1068,7 +1068,9 @@ def start_parameters(start):
     it, the others be > 0; a CalibrationError names the one that is not."""
     doc = load_parameters(start) if isinstance(start, str) else start
     q = {k: float(v) for k, v in doc["parameters"].items() if k in VARIABLES}
-    q.setdefault("GrainFriction", float(doc["pack"].get("Friction", doc["recipe"].get("grain_friction", 0.5))))
+    recipe_friction = doc["recipe"].get("grain_friction")
+    q.setdefault("GrainFriction", float(doc["pack"].get(
+        "Friction", GRAIN_FRICTION if recipe_friction is None else recipe_friction)))
     missing = [k for k in VARIABLES if k not in q]
     if missing:
         raise _bad("start", sorted(doc["parameters"]), "a parameter file's parameters, with %s" % ", ".join(missing))
