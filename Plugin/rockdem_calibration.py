@@ -1002,8 +1002,6 @@ def bench_for(doc, target=None, seed=None):
     # the pack is built with the calibrated grain friction (files before the seventeenth
     # session: their pack's), not re-run for it at the first test
     recipe["grain_friction"] = doc["parameters"].get("GrainFriction", doc["pack"].get("Friction", recipe["grain_friction"]))
-    if recipe["grain_friction"] is None:
-        recipe["grain_friction"] = GRAIN_FRICTION
     return _Bench(target, recipe, None, grain_modulus=doc["parameters"]["BondModulus"])
 
 
