@@ -15,8 +15,8 @@
 # - the server is stopped (and waited for) when the command ends, however it ends.
 # The command's output goes to this script's output, its exit status is returned. A server
 # that does not come up within 20 s, or a command that fails because it could not reach
-# the display, is retried (5 attempts in all; the server's own messages are shown when it
-# does not start); any other failure is returned as is.
+# the display (Xlib's and Qt's messages), is retried (5 attempts in all; the server's own
+# messages are shown when it does not start); any other failure is returned as is.
 set -u
 screen="${ROCKDEM_XVFB_SCREEN:-1280x1024x24}"
 xvfb_pid=""
@@ -69,7 +69,7 @@ for attempt in $(seq "$attempts"); do
   log=$(mktemp)
   DISPLAY=":$display" "$@" 2>&1 | tee "$log"
   rc=${PIPESTATUS[0]}
-  if [ "$rc" -ne 0 ] && grep -q -E "bad X server connection|cannot open display|Can't open display" "$log"; then
+  if [ "$rc" -ne 0 ] && grep -q -E "bad X server connection|cannot open display|Can't open display|could not connect to display" "$log"; then
     echo "run_with_xvfb: the command could not reach display :$display on attempt $attempt of $attempts, retrying" >&2
     rm -f "$log"
     stop_xvfb
