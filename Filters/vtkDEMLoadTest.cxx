@@ -12,6 +12,7 @@
 #include "dem/Simulation.h"
 #include "dem/StageTime.h"
 #include "dem/StateFile.h"
+#include "dem/ResolutionAdvice.h"
 #include "dem/StrainRateAdvice.h"
 
 #include <vtkDoubleArray.h>
@@ -773,6 +774,17 @@ void vtkDEMLoadTest::Start(vtkMultiBlockDataSet* input)
     if (!slow.empty())
     {
       vtkWarningMacro(<< "DEM Load Test: " << slow);
+    }
+  }
+  // A cemented specimen narrower than the widths where the atlas's strengths converge is
+  // risky, a tension specimen far wider wasteful (dem::resolutionAdvice).
+  if (testing)
+  {
+    const std::string advice =
+      dem::resolutionAdvice(dem::grainsAcross(in.Model, press.axis), in.Model, press);
+    if (!advice.empty())
+    {
+      vtkWarningMacro(<< "DEM Load Test: " << advice);
     }
   }
   // A timestep near the stability boundary the atlas measured for this model is risky

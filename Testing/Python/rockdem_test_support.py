@@ -3,6 +3,9 @@ import os
 import sys
 
 from paraview.simple import LoadPlugin
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand, vtkOutputWindow
 
 
 def load_rockdem(ns):
@@ -30,3 +33,21 @@ class Checks:
     def finish(self):
         print("%d passed, %d failed" % (self.passed, self.failed))
         sys.exit(1 if self.failed or not self.passed else 0)
+
+
+class Messages:
+    """What reaches Output Messages (the output window's messages, observed)."""
+
+    def __init__(self):
+        self.text = []
+        vtkOutputWindow.GetInstance().AddObserver(vtkCommand.MessageEvent, self.on_message)
+
+    @calldata_type(VTK_STRING)
+    def on_message(self, caller, event, text):
+        self.text.append(text)
+
+    def GetOutput(self):
+        return "".join(self.text)
+
+    def Flush(self):
+        self.text = []

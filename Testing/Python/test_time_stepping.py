@@ -26,38 +26,17 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rockdem_test_support import Checks, load_rockdem  # noqa: E402
+from rockdem_test_support import Checks, Messages, load_rockdem  # noqa: E402
 
 from paraview import servermanager  # noqa: E402
 from paraview.simple import *  # noqa: E402,F401,F403
-from vtkmodules.vtkCommonCore import vtkCommand, vtkOutputWindow  # noqa: E402
-from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 
 load_rockdem(globals())
 import rockdem  # noqa: E402
 
 c = Checks()
 T0 = time.time()
-
-class Messages:
-    """What reaches Output Messages (the output window's messages, observed)."""
-
-    def __init__(self):
-        self.text = []
-        vtkOutputWindow.GetInstance().AddObserver(vtkCommand.MessageEvent, self.on_message)
-
-    @calldata_type(VTK_STRING)
-    def on_message(self, caller, event, text):
-        self.text.append(text)
-
-    def GetOutput(self):
-        return "".join(self.text)
-
-    def Flush(self):
-        self.text = []
-
 
 messages = Messages()
 
