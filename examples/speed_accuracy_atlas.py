@@ -639,7 +639,7 @@ def contact_law_section(bench, cfg, work, out):
 # a sweep cut short by the clock keeps the most useful runs; --no-new-runs writes the table from the
 # runs in WORK and lists the missing ones.
 FULL["resolution"] = {
-    "sizes": [250, 700, 1500, 3500, 8000, 17000], "seeds": [1, 2, 3], "confining": [0.1, 0.2],
+    "sizes": [250, 700, 1500, 3500, 8000, 17000, 47000, 136000], "seeds": [1, 2, 3], "confining": [0.1, 0.2],
     "strain_per_step": 1e-7, "tension_strain_per_step": 1e-8, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
     "tension_max_strain": 0.0003,
     # (size, seed, kind): "ucs_triaxial" replaces "ucs" where it is planned (the same unconfined test).
@@ -651,7 +651,29 @@ FULL["resolution"] = {
               + [(17000, s, k) for s in (1, 2, 3) for k in ("ucs", "tension")]
               + [(8000, s, "ucs_triaxial") for s in (1, 2, 3)]
               # (sixteenth session: the friction angle at 20 across, seed 1 only: about an hour)
-              + [(17000, 1, "ucs_triaxial")])}
+              + [(17000, 1, "ucs_triaxial")]
+              # (nineteenth session: 40 and 28 across, seed 1, unconfined only, on two threads - the same
+              # bits as one, Determinism - about 3.5e9 and 1.3e9 particle-steps)
+              + [(136000, 1, "ucs"), (47000, 1, "ucs")]),
+    "threads": {136000: 2, 47000: 2}}
+# The same sweep undamped (nineteenth session): is the UCS's rise with the size, which does not level off
+# by 20 across under Settling Damping 0.7, the damping's? The unconfined test at Settling Damping 0 and
+# 5e-8 per step (the recipe of "2D section against a 3D slab", whose 8,000-grain boxes are these
+# specimens: the same seeds give the same UCS to the last digit), tension at 1e-8 per step as above.
+FULL["resolution_undamped"] = {
+    "sizes": [250, 700, 1500, 3500, 8000, 17000], "seeds": [1, 2, 3], "confining": [],
+    "strain_per_step": 5e-8, "tension_strain_per_step": 1e-8, "ucs_max_strain": 0.005, "tension_max_strain": 0.0003,
+    "triaxial_max_strain": 0.01, "extra": ["--damping", "0"], "ucs_extra": ["--min-peak-strain", "2e-05"],
+    "title": ", undamped (Settling Damping 0)",
+    # The unconfined tests first (the question), the finest size before 8,000; then tension.
+    "order": ([(n, s, "ucs") for n in (250, 700, 1500, 3500, 17000, 8000) for s in (1, 2, 3)]
+              + [(n, s, "tension") for n in (250, 700, 1500, 3500, 8000, 17000) for s in (1, 2, 3)])}
+QUICK["resolution_undamped"] = {
+    "sizes": [120, 250], "seeds": [1, 2], "confining": [],
+    "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "tension_max_strain": 0.0004,
+    "triaxial_max_strain": 0.01, "extra": ["--damping", "0"], "ucs_extra": ["--min-peak-strain", "6e-05"],
+    "title": ", undamped (Settling Damping 0)",
+    "order": [(n, s, k) for n in (120, 250) for s in (1, 2) for k in ("ucs", "tension")]}
 QUICK["resolution"] = {
     "sizes": [120, 250], "seeds": [1, 2], "confining": [0.2],
     "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "triaxial_max_strain": 0.01,
@@ -689,10 +711,13 @@ def resolution_args(c, n, seed, kind):
     tests = {"ucs": "ucs", "ucs_triaxial": "ucs,triaxial", "tension": "tension"}[kind]
     strain = {"ucs": c["ucs_max_strain"], "ucs_triaxial": c["triaxial_max_strain"],
               "tension": c["tension_max_strain"]}[kind]
-    return (["--particles", str(n), "--seed", str(seed), "--threads", "1", "--tests", tests]
+    return (["--particles", str(n), "--seed", str(seed), "--threads", str(c.get("threads", {}).get(n, 1)),
+             "--tests", tests]
             + (["--confining", ",".join("%g" % f for f in c["confining"])] if kind == "ucs_triaxial" else [])
+            + c.get("extra", [])
             + ["--strain-per-step", "%g" % (c["tension_strain_per_step"] if kind == "tension" else c["strain_per_step"])]
-            + ROCK[:-2] + ["--max-strain", "%g" % strain])
+            + ROCK[:-2] + ["--max-strain", "%g" % strain]
+            + (c.get("ucs_extra", []) if kind != "tension" else []))
 
 
 def friction_angle(ucs, triaxial):
@@ -716,13 +741,13 @@ def mean_sd(values):
     return m, sd, len(v)
 
 
-def resolution_runs(bench, cfg, work, new_runs):
+def resolution_runs(bench, cfg, work, new_runs, key="resolution"):
     """Runs (or reuses) the sweep's bench runs in their order; {(size, seed, kind): figures}, the missing runs."""
-    c = cfg["resolution"]
+    c = cfg[key]
     done, missing = {}, []
     for n, seed, kind in c["order"]:
         args = resolution_args(c, n, seed, kind)
-        name = "resolution_%d_s%d_%s" % (n, seed, kind)
+        name = "%s_%d_s%d_%s" % (key, n, seed, kind)
         path = os.path.join(work, name + ".txt")
         have = False
         if cfg is FULL and os.path.exists(path):
@@ -779,8 +804,8 @@ def resolution_records(cfg, done):
     return per
 
 
-def resolution_stats(cfg, per):
-    c = cfg["resolution"]
+def resolution_stats(cfg, per, key="resolution"):
+    c = cfg[key]
     stats = {}
     for n in c["sizes"]:
         recs = [per[(n, s)] for s in c["seeds"] if (n, s) in per]
@@ -817,15 +842,16 @@ def convergence(stats, key):
     return sizes[-1], first(mean_ok), first(seed_ok)
 
 
-def resolution_section(bench, cfg, work, out, new_runs=True):
+def resolution_section(bench, cfg, work, out, new_runs=True, sweep="resolution"):
     """Grains across the width against UCS, E, nu, sigma_t and the friction angle over pack seeds: error against
-    the finest size, cost (seconds, particle-steps) against error, and where each property converges within 5 %."""
-    c = cfg["resolution"]
-    done, missing = resolution_runs(bench, cfg, work, new_runs)
+    the finest size, cost (seconds, particle-steps) against error, and where each property converges within 5 %.
+    sweep: the sweep's configuration (cfg[sweep]), also its runs' and chart's name."""
+    c = cfg[sweep]
+    done, missing = resolution_runs(bench, cfg, work, new_runs, sweep)
     if not done:
-        sys.exit("resolution: no runs")
+        sys.exit("%s: no runs" % sweep)
     per = resolution_records(cfg, done)
-    stats = resolution_stats(cfg, per)
+    stats = resolution_stats(cfg, per, sweep)
     sizes = sorted(stats)
     charted = [p for p in RES_PROPS if p[0] != "nu"]
     cost_of = {"ucs": "ucs", "E": "ucs", "nu": "ucs", "tension": "tension", "phi": "phi"}
@@ -863,9 +889,10 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
     ax[1].set_xscale("log")
     ax[1].set_title("cost against error (labels: grains across)", fontsize=9)
     ax[2].set_xscale("log")
-    fig.suptitle("Resolution: stiff-bond rock, %s grains, seeds %s, %g strain per step"
-                 % ("/".join("%d" % n for n in sizes), ",".join("%d" % s for s in c["seeds"]), c["strain_per_step"]))
-    image = save_chart(fig, out, "speed_accuracy_resolution.png")
+    fig.suptitle("Resolution: stiff-bond rock, %s grains, seeds %s, %g strain per step%s"
+                 % ("/".join("%d" % n for n in sizes), ",".join("%d" % s for s in c["seeds"]), c["strain_per_step"],
+                    c.get("title", "")))
+    image = save_chart(fig, out, "speed_accuracy_%s.png" % sweep)
 
     ref_size = {key: max([n for n in sizes if stats[n][key][2] > 0] or [0]) for key, _, _, _, _ in RES_PROPS}
     ref = {key: stats[ref_size[key]][key][0] if ref_size[key] else math.nan for key, _, _, _, _ in RES_PROPS}
@@ -931,18 +958,18 @@ def resolution_section(bench, cfg, work, out, new_runs=True):
     kinds = {"ucs_triaxial": "unconfined and triaxial", "ucs": "unconfined", "tension": "tension"}
     commands = "; ".join("%s: `rockdem_bench_rock %s`" % (
         kinds[k], " ".join(resolution_args(c, "N", "S", k))) for k in
-        ("ucs_triaxial", "ucs", "tension"))
+        ("ucs_triaxial", "ucs", "tension") if any(kind == k for _, _, kind in c["order"]))
     runs_by_kind = {}
     for (n, s, k) in sorted(done):
         runs_by_kind.setdefault(k, []).append("%d/%d" % (n, s))
     text = ("Commands (N grains, seed S): %s (%s; load average %.2f-%.2f before the runs, %d runs, %.0f s wall in all; "
-            "each run's command, load and output in `atlas_runs/resolution_N_sS_KIND.txt`). Runs made (grains/seed): %s. "
+            "each run's command, load and output in `atlas_runs/%s_N_sS_KIND.txt`). Runs made (grains/seed): %s. "
             "Compression tests: timestep %.3g-%.3g s (the smallest grain is smaller in a larger pack), strain rate "
             "%.3g-%.3g 1/s = %.3g-%.3g x the Suggested Strain Rate.\n\n"
             "Mean over the seeds +- their standard deviation, and (in brackets) the difference of the mean from the "
             "finest size's (the reference) +- its standard error (from both sizes' seed spreads):\n\n%s\n\n"
             "Within 5 %% of the finest size (the mean over the seeds; each seed on its own):\n\n%s\n\n%s\n\n%s") % (
-        commands, machine(), loads[0], loads[-1], len(done), walls,
+        commands, machine(), loads[0], loads[-1], len(done), walls, sweep,
         "; ".join("%s %s" % (kinds[k], ", ".join(v)) for k, v in runs_by_kind.items()),
         min(comp["timestep"] for comp in compression), max(comp["timestep"] for comp in compression),
         min(comp["rate"] for comp in compression), max(comp["rate"] for comp in compression),
@@ -1376,7 +1403,8 @@ def main():
                         help="resolution: write the table from the runs in WORK only, listing the missing ones")
     parser.add_argument("--dims-runs", default="",
                         help="dims: run only these of its runs (KIND:SEED comma list; to split them over processes)")
-    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law,resolution,dims",
+    parser.add_argument("--only", default="rates,modulus,threads,stability,timestep_bonded,contact_law,resolution,"
+                        "resolution_undamped,dims",
                         help="sections to run (comma list)")
     o = parser.parse_args()
     cfg = QUICK if o.quick else FULL
@@ -1388,6 +1416,8 @@ def main():
               "stability": stability_section, "timestep_bonded": timestep_bonded_section,
               "contact_law": contact_law_section,
               "resolution": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs),
+              "resolution_undamped": lambda *a: resolution_section(*a, new_runs=not o.no_new_runs,
+                                                                   sweep="resolution_undamped"),
               "rate_seeds": lambda *a: rate_seeds_section(*a, new_runs=not o.no_new_runs),
               "dims": lambda *a: dims_section(*a, new_runs=not o.no_new_runs,
                                               only=o.dims_runs.split(",") if o.dims_runs else None)}
