@@ -79,10 +79,36 @@ TEST(ResolutionAdvice, ANarrowCementedSpecimenIsRiskyWithWhatTheAtlasMeasuredThe
   // The nearest measured width is quoted: 10 across is nearer 9.0 than 11.9.
   EXPECT_NE(resolutionAdvice(10.0, m, mode(TestMode::Compression)).find("a specimen 9 across measured the UCS 32.9 %"),
             std::string::npos);
-  // At and above 11.9 across a compression test gets no advice (the UCS has no converged width
-  // to be wasteful beyond).
+  // Under Settling Damping (the default 0.7) the UCS never converged: the advice says so and
+  // what the undamped sweep measured.
+  const std::string damped = resolutionAdvice(7.0, m, mode(TestMode::Compression));
+  EXPECT_NE(damped.find("Settling Damping 0.7, Documentation/SpeedAccuracy.md"), std::string::npos) << damped;
+  EXPECT_NE(damped.find("it still rose at 40 across"), std::string::npos) << damped;
+  EXPECT_NE(damped.find("undamped it was within 5 % from 15.6 across"), std::string::npos) << damped;
+  // At and above 11.9 across a damped compression test gets no advice (the UCS has no converged
+  // width to be wasteful beyond).
   EXPECT_EQ(resolutionAdvice(11.9, m, mode(TestMode::Compression)), "");
   EXPECT_EQ(resolutionAdvice(80.0, m, mode(TestMode::Triaxial)), "");
+}
+
+TEST(ResolutionAdvice, UndampedTheUcsNeedsSixteenAcrossAndTheUndampedSweepIsQuoted)
+{
+  Model m = lattice(7, 7, 14, 0.001, true);
+  m.solver.settlingDamping = 0.0;
+  // The undamped sweep at 7.0 across: UCS 25.2 %, E 42.7 %, sigma_t 11.4 % low.
+  const std::string advice = resolutionAdvice(7.0, m, mode(TestMode::Compression));
+  EXPECT_NE(advice.find("(3D boxes, undamped, Documentation/SpeedAccuracy.md"), std::string::npos) << advice;
+  EXPECT_NE(advice.find("a specimen 7 across measured the UCS 25.2 %, Young's modulus 42.7 % and the direct "
+                        "tensile strength 11.4 % below"),
+            std::string::npos)
+    << advice;
+  EXPECT_NE(advice.find("15.6 for the UCS"), std::string::npos) << advice;
+  // Between 11.9 and 15.6 across an undamped compression or triaxial test is still risky (the UCS
+  // 14.4 % low at 11.9), a tension test is not.
+  EXPECT_NE(resolutionAdvice(13.0, m, mode(TestMode::Triaxial)).find("a specimen 11.9 across measured the UCS 14.4 %"),
+            std::string::npos);
+  EXPECT_EQ(resolutionAdvice(13.0, m, mode(TestMode::Tension)), "");
+  EXPECT_EQ(resolutionAdvice(15.6, m, mode(TestMode::Compression)), "");
 }
 
 TEST(ResolutionAdvice, AWideTensionSpecimenIsWastefulWithItsCost)

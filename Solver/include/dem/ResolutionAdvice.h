@@ -25,6 +25,10 @@ double grainsAcross(const Model& model, int axis);
 constexpr double ResolutionRiskyAcross = 11.9;
 /// The direct tensile strength was within 5 % of the finest size's from 15.6 across (every seed).
 constexpr double TensionConvergedAcross = 15.6;
+/// Undamped (Settling Damping 0), the UCS's mean was within 5 % of that at 20 across from 15.6
+/// across (-2.9 %; 11.9 across: -14.4 %). Under Settling Damping 0.7 it did not converge: it still
+/// rose at 40 across, the damping's share of it growing with the width.
+constexpr double UndampedUcsConvergedAcross = 15.6;
 /// A tension test wider than this multiple of TensionConvergedAcross is wasteful: it costs the
 /// cube of the ratio in particle-steps for a tensile strength no closer to the converged one.
 constexpr double ResolutionWastefulFactor = 2.0;
@@ -32,8 +36,10 @@ constexpr double ResolutionWastefulFactor = 2.0;
 /// One line of advice for the test `settings` on `model` whose specimen is `across` mean grain
 /// diameters wide (grainsAcross): "" unless the model is a 3D cemented one (intact bonds) under a
 /// Compression, Triaxial or Tension test (the tests the sweep ran) and the width is below
-/// ResolutionRiskyAcross (what the atlas measured at the nearest measured width, and the advised
-/// widths) or, for Tension, above ResolutionWastefulFactor x TensionConvergedAcross.
+/// ResolutionRiskyAcross (an undamped Compression or Triaxial test: UndampedUcsConvergedAcross):
+/// what the atlas measured at the nearest measured width under the model's damping (Settling
+/// Damping above 0: the damped sweep, at 0.7; 0: the undamped one) and the advised widths; or, for
+/// Tension, above ResolutionWastefulFactor x TensionConvergedAcross.
 std::string resolutionAdvice(double across, const Model& model, const LoadTestSettings& settings);
 
 } // namespace dem
