@@ -878,7 +878,9 @@ def resolution_section(bench, cfg, work, out, new_runs=True, sweep="resolution")
                 ax[1].annotate("%.1f" % stats[n]["across"], (x, y), textcoords="offset points", xytext=(4, 6),
                                fontsize=7)
     ax[0].set_xlabel("mean grain diameters across the width")
-    ax[1].set_xlabel("seconds per specimen (compaction, cement, test(s); 1 thread)")
+    two = sorted(n for n, t in c.get("threads", {}).items() if t == 2 and n in stats)
+    ax[1].set_xlabel("seconds per specimen (compaction, cement, test(s); 1 thread%s)"
+                     % ("; %s grains: 2" % " and ".join("%d" % n for n in two) if two else ""))
     ax[2].set_xlabel("particle-steps per specimen")
     for a in ax:
         a.axhspan(-100 * CONVERGED, 100 * CONVERGED, color="0.9")
@@ -916,10 +918,10 @@ def resolution_section(bench, cfg, work, out, new_runs=True, sweep="resolution")
         rows.append(["%d" % n, "%.1f" % st["across"], ",".join("%d" % s for s in seeds_ucs),
                      "%.3f / %.2f" % (st["porosity"], st["coordination"]), "%.1f" % st["rate_factor"]]
                     + [cell(st, key, scale, fmt) for key, _, scale, _, fmt in RES_PROPS]
-                    + ["%.1f / %.1f / %s" % (st["sec_ucs"], st["sec_tension"],
-                                             "%.1f" % st["sec_phi"] if math.isfinite(st["sec_phi"]) else "-"),
-                       "%.3g / %.3g / %s" % (st["ps_ucs"], st["ps_tension"],
-                                             "%.3g" % st["ps_phi"] if math.isfinite(st["ps_phi"]) else "-")])
+                    + [" / ".join("%.1f" % st[k] if math.isfinite(st[k]) else "-"
+                                  for k in ("sec_ucs", "sec_tension", "sec_phi")),
+                       " / ".join("%.3g" % st[k] if math.isfinite(st[k]) else "-"
+                                  for k in ("ps_ucs", "ps_tension", "ps_phi"))])
     body = table(["grains", "across", "seeds", "porosity / bonded coordination",
                   "compression strain rate / Suggested Strain Rate", "UCS (MPa)", "E (GPa)", "nu", "sigma_t (MPa)", "friction angle (deg)",
                   "seconds per specimen: unconfined / tension / triaxial", "particle-steps: unconfined / tension / "
