@@ -661,13 +661,16 @@ FULL["resolution"] = {
 # 5e-8 per step (the recipe of "2D section against a 3D slab", whose 8,000-grain boxes are these
 # specimens: the same seeds give the same UCS to the last digit), tension at 1e-8 per step as above.
 FULL["resolution_undamped"] = {
-    "sizes": [250, 700, 1500, 3500, 8000, 17000], "seeds": [1, 2, 3], "confining": [],
+    "sizes": [250, 700, 1500, 3500, 8000, 17000, 47000], "seeds": [1, 2, 3], "confining": [],
     "strain_per_step": 5e-8, "tension_strain_per_step": 1e-8, "ucs_max_strain": 0.005, "tension_max_strain": 0.0003,
     "triaxial_max_strain": 0.01, "extra": ["--damping", "0"], "ucs_extra": ["--min-peak-strain", "2e-05"],
     "title": ", undamped (Settling Damping 0)",
-    # The unconfined tests first (the question), the finest size before 8,000; then tension.
+    # The unconfined tests first (the question), the finest size before 8,000; then tension; then
+    # (added once the damped 28-across run had shown a denser pack there) 28 across, seed 1, on two threads.
     "order": ([(n, s, "ucs") for n in (250, 700, 1500, 3500, 17000, 8000) for s in (1, 2, 3)]
-              + [(n, s, "tension") for n in (250, 700, 1500, 3500, 8000, 17000) for s in (1, 2, 3)])}
+              + [(n, s, "tension") for n in (250, 700, 1500, 3500, 8000, 17000) for s in (1, 2, 3)]
+              + [(47000, 1, "ucs")]),
+    "threads": {47000: 2}}
 QUICK["resolution_undamped"] = {
     "sizes": [120, 250], "seeds": [1, 2], "confining": [],
     "strain_per_step": 4e-7, "tension_strain_per_step": 4e-7, "ucs_max_strain": 0.006, "tension_max_strain": 0.0004,
