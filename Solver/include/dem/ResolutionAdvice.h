@@ -26,8 +26,10 @@ constexpr double ResolutionRiskyAcross = 11.9;
 /// The direct tensile strength was within 5 % of the finest size's from 15.6 across (every seed).
 constexpr double TensionConvergedAcross = 15.6;
 /// Undamped (Settling Damping 0), the UCS's mean was within 5 % of that at 20 across from 15.6
-/// across (-2.9 %; 11.9 across: -14.4 %). Under Settling Damping 0.7 it did not converge: it still
-/// rose at 40 across, the damping's share of it growing with the width.
+/// across (-2.9 %; 11.9 across: -14.4 %), though 28 across gave 6 % more again (one seed): the width
+/// from which an undamped UCS is within 5 % of the 20-across one. Under Settling Damping 0.7 the
+/// UCS rose further (+9.6 % from 15.6 to 20 across) and on at 28 and 40 across; it was about 2 x
+/// the undamped one from 12 across on.
 constexpr double UndampedUcsConvergedAcross = 15.6;
 /// A tension test wider than this multiple of TensionConvergedAcross is wasteful: it costs the
 /// cube of the ratio in particle-steps for a tensile strength no closer to the converged one.
