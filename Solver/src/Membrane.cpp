@@ -196,12 +196,7 @@ void validateMembraneSpecimen(const Model& model, const LoadTestSettings& settin
     if (k == a) {
       continue;
     }
-    double lo = std::numeric_limits<double>::max();
-    double hi = -lo;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      lo = std::min(lo, p.position[i][k] - p.radius[i]);
-      hi = std::max(hi, p.position[i][k] + p.radius[i]);
-    }
+    const auto [lo, hi] = grainExtent(p, k);
     halfWidth = std::min(halfWidth, 0.5 * (hi - lo));
     middle[k] = 0.5 * (lo + hi);
   }

@@ -4,6 +4,7 @@
 #include "dem/Errors.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -254,6 +255,17 @@ double particleVolume(const Domain& domain, double radius)
     return kPi * r * r * t;                  // disc through the slab
   }
   return 4.0 / 3.0 * kPi * r * r * r;        // sphere
+}
+
+std::array<double, 2> grainExtent(const Particles& particles, int axis)
+{
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    lo = std::min(lo, particles.position[i][axis] - particles.radius[i]);
+    hi = std::max(hi, particles.position[i][axis] + particles.radius[i]);
+  }
+  return { lo, hi };
 }
 
 void updateMassProperties(Model& model)

@@ -71,12 +71,7 @@ double grainsAcross(const Model& model, int axis)
     if (a == axis) {
       continue;
     }
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -lo;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      lo = std::min(lo, p.position[i][a] - p.radius[i]);
-      hi = std::max(hi, p.position[i][a] + p.radius[i]);
-    }
+    const auto [lo, hi] = grainExtent(p, a);
     narrowest = std::min(narrowest, hi - lo);
   }
   return std::isfinite(narrowest) ? narrowest / diameter : 0.0;

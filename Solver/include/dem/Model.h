@@ -155,6 +155,10 @@ void permuteParticles(Particles& particles, const std::vector<std::size_t>& orde
 /// Sets mass and inertia of every particle from its radius, the density and 2D/3D.
 void updateMassProperties(Model& model);
 
+/// The grains' extent along `axis` (0 X, 1 Y, 2 Z): {lowest centre - radius, highest centre +
+/// radius} (m). {+inf, -inf} without grains.
+std::array<double, 2> grainExtent(const Particles& particles, int axis);
+
 /// Throws InputError for an invalid domain (non-positive dimensions, non-finite origin,
 /// Periodic Z with 2D Section).
 void validate(const Domain& domain);
