@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -110,6 +112,31 @@ Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumI
 }
 
 // kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
+
+/// (-0, -0, -0): what the gather adds for a pair without force (x + -0.0 is x).
+const Vec3 kNegativeZero(-0.0, -0.0, -0.0);
+
+/// a when c, else b, without a branch.
+inline const Vec3* chooseRow(bool c, const Vec3* a, const Vec3* b)
+{
+  const std::uintptr_t m = std::uintptr_t{ 0 } - static_cast<std::uintptr_t>(c);
+  return reinterpret_cast<const Vec3*>((reinterpret_cast<std::uintptr_t>(a) & m) |
+                                       (reinterpret_cast<std::uintptr_t>(b) & ~m));
+}
+
+/// -v when flip, else v (the sign bits flipped, without a branch).
+inline Vec3 withSignFlipped(const Vec3& v, bool flip)
+{
+  const std::uint64_t sign = static_cast<std::uint64_t>(flip) << 63;
+  Vec3 out;
+  for (int c = 0; c < 3; ++c) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v[c], sizeof bits);
+    bits ^= sign;
+    std::memcpy(&out[c], &bits, sizeof bits);
+  }
+  return out;
+}
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
 /// stack) and evaluates them at the block's end, while its arrays are still in cache.
@@ -666,7 +693,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
 #if ROCKDEM_AVX2_KERNEL
     if (simd) {
       // The block's pairs tested four at a time; those that touch evaluated four at a time.
-      std::uint32_t list[kPairBlock], ended[kPairBlock];
+      std::uint32_t list[kPairBlock + kScanSlack], ended[kPairBlock + kScanSlack];
       std::size_t endedCount = 0;
       const std::size_t listed = scanPairsAvx2(arrays, static_cast<std::size_t>(b * kPairBlock),
                                                static_cast<std::size_t>(blockEnd), list, ended, endedCount);
@@ -854,18 +881,20 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
       touching[i] = 0;
       walked += pairEnd - adjacencyStart[i];
       for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
+        // A pair without normal force (not touching, or no force) adds nothing; with it,
+        // particle i of the pair adds its force and torque I, particle j minus the force and
+        // torque J. Without a branch on either (both are data, and a branch on them was
+        // mispredicted about one entry in three): an entry without force adds -0.0, which
+        // leaves every sum as it is (x + -0.0 is x for every x, -0.0 included), and minus
+        // the force is the force with its sign bit flipped (x - y is x + (-y)).
         const std::uint32_t entry = adjacency[e];
         const std::uint32_t k = entry >> 1;
-        if (pairNormal[k] == 0.0) {
-          continue; // not touching, or no force: adds nothing (and skipping +0.0 changes no bit)
-        }
-        if (entry & 1u) {
-          force -= pairForce[k];
-          torque += pairTorqueJ[k];
-        } else {
-          force += pairForce[k];
-          torque += pairTorqueI[k];
-        }
+        const bool live = pairNormal[k] != 0.0;
+        const bool asJ = (entry & 1u) != 0;
+        const Vec3* f = chooseRow(live, pairForce + k, &kNegativeZero);
+        const Vec3* t = chooseRow(live, chooseRow(asJ, pairTorqueJ + k, pairTorqueI + k), &kNegativeZero);
+        force += withSignFlipped(*f, live && asJ);
+        torque += *t;
       }
       for (std::size_t e = wallStart[i]; e < wallStart[i + 1]; ++e) {
         wallContact(e, i, force, torque);

@@ -123,10 +123,15 @@ constexpr double kApart = 1.0 + 0x1p-50;
 /// process, the variable at every call (the CPU backend calls it when it is made).
 bool touchingPairsAvx2Enabled();
 
-/// The pair loop's test of pairs [first, last) (at most kPairBlock of them), four at a time
-/// with AVX2, as the scalar loop tests them: appends the pairs that touch to `list` (their
-/// count returned) and those that do not touch but may hold state (live) to `ended`
-/// (`endedCount`), which the caller clears. Plain differences of positions only.
+/// Entries that `list` and `ended` must hold beyond last - first for scanPairsAvx2: each
+/// group of four pairs writes four entries and keeps those it lists.
+constexpr std::size_t kScanSlack = 4;
+
+/// The pair loop's test of pairs [first, last), four at a time with AVX2, as the scalar loop
+/// tests them: appends the pairs that touch to `list` (their count returned) and those that
+/// do not touch but may hold state (live) to `ended` (`endedCount`), which the caller
+/// clears. Both arrays hold last - first + kScanSlack entries. Plain differences of
+/// positions only.
 std::size_t scanPairsAvx2(const TouchingPairArrays& arrays, std::size_t first, std::size_t last,
                           std::uint32_t* list, std::uint32_t* ended, std::size_t& endedCount);
 
