@@ -121,9 +121,9 @@ BondStresses bondStresses(const BondSection& s, double bondRadius, double normal
 
 namespace {
 // Mohr-Coulomb: the shear strength grows with the compressive normal stress.
-bool failsInShear(const BondStresses& stresses, double cohesion, double frictionAngle)
+bool failsInShear(const BondStresses& stresses, double cohesion, double tanFriction)
 {
-  return stresses.tauMax >= cohesion + stresses.compressive * std::tan(frictionAngle);
+  return stresses.tauMax >= cohesion + stresses.compressive * tanFriction;
 }
 } // namespace
 
@@ -133,7 +133,7 @@ BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, do
   if (stresses.sigmaMax >= tensileStrength) {
     return BondFailure::Tension;
   }
-  if (failsInShear(stresses, cohesion, frictionAngle)) {
+  if (failsInShear(stresses, cohesion, std::tan(frictionAngle))) {
     return BondFailure::Shear;
   }
   return BondFailure::Intact;
@@ -155,15 +155,25 @@ double softeningDamage(double stressRatio, double softeningRatio)
 BondFailure softenedBondFailure(const BondStresses& elastic, double tensileStrength, double cohesion,
                                 double frictionAngle, double softeningRatio, double& damage)
 {
-  if (!(softeningRatio > 0.0)) {
-    return bondFailure(elastic, tensileStrength, cohesion, frictionAngle);
+  return softenedBondFailureWithTan(elastic, tensileStrength, cohesion, std::tan(frictionAngle),
+                                    softeningRatio, damage);
+}
+
+BondFailure softenedBondFailureWithTan(const BondStresses& elastic, double tensileStrength, double cohesion,
+                                       double tanFriction, double softeningRatio, double& damage)
+{
+  if (!(softeningRatio > 0.0)) { // dem::bondFailure
+    if (elastic.sigmaMax >= tensileStrength) {
+      return BondFailure::Tension;
+    }
+    return failsInShear(elastic, cohesion, tanFriction) ? BondFailure::Shear : BondFailure::Intact;
   }
   const double ratio = elastic.sigmaMax / tensileStrength;
   if (ratio >= 1.0 + softeningRatio) {
     return BondFailure::Tension;
   }
   damage = std::max(damage, softeningDamage(ratio, softeningRatio));
-  if (failsInShear(elastic, cohesion, frictionAngle)) {
+  if (failsInShear(elastic, cohesion, tanFriction)) {
     return BondFailure::Shear;
   }
   return BondFailure::Intact;

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 using namespace dem;
@@ -926,6 +927,45 @@ TEST(BondSoftening, RatioZeroIsTheBrittleLaw)
   double bentDamage = 0.0;
   EXPECT_EQ(softenedBondFailure(bent, 1e6, 4e6, 0.5, 2.5, bentDamage), BondFailure::Intact);
   EXPECT_DOUBLE_EQ(bentDamage, 0.7);
+}
+
+// The CPU backend gives the shear test the tangent it computed once for a run of bonds
+// (softenedBondFailureWithTan): the same failure and the same damage as the law that
+// takes the angle, bit for bit, on either side of each boundary, with and without
+// softening, at friction angles 0 to 89 deg.
+TEST(Bonds, FailureWithTheTangentGivenIsTheFailureWithTheAngle)
+{
+  const BondSection s = bondSection(0.01, false, 0.0);
+  int shear = 0, tension = 0, intact = 0;
+  for (double angle : { 0.0, 0.3, 0.5235987755982988, 1.0, 1.5533430342749532 }) {
+    for (double softening : { 0.0, 2.5 }) {
+      for (double sigma : { -3e6, -1e6, 0.0, 0.5e6, 0.999e6, 1e6, 2e6, 3.5e6 }) {
+        // tau on both sides of c + sigma tan(phi) (sigma compressive: -Fn / A).
+        const double edge = 4e6 + (-sigma) * std::tan(angle);
+        for (double tau : { 0.0, std::nextafter(edge, 0.0), edge, std::nextafter(edge, 1e99), 2.0 * edge }) {
+          const BondStresses st =
+            bondStresses(s, 0.01, sigma * s.area, Vec3(tau * s.area, 0, 0), 0.0, Vec3::Zero());
+          double damageAngle = 0.1;
+          double damageTan = 0.1;
+          const BondFailure byAngle = softenedBondFailure(st, 1e6, 4e6, angle, softening, damageAngle);
+          const BondFailure byTan =
+            softenedBondFailureWithTan(st, 1e6, 4e6, std::tan(angle), softening, damageTan);
+          EXPECT_EQ(byAngle, byTan) << "angle " << angle << " sigma " << sigma << " tau " << tau;
+          EXPECT_EQ(std::memcmp(&damageAngle, &damageTan, sizeof(double)), 0);
+          if (softening == 0.0) {
+            EXPECT_EQ(byTan, bondFailure(st, 1e6, 4e6, angle));
+          }
+          shear += byTan == BondFailure::Shear;
+          tension += byTan == BondFailure::Tension;
+          intact += byTan == BondFailure::Intact;
+        }
+      }
+    }
+  }
+  // Every outcome occurs.
+  EXPECT_GT(shear, 0);
+  EXPECT_GT(tension, 0);
+  EXPECT_GT(intact, 0);
 }
 
 TEST(BondSoftening, SameBitsOnOneAndTwoThreads)

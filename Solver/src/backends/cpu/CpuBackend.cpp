@@ -35,22 +35,11 @@ int availableThreads()
 #endif
 }
 
-/// This thread's rank in the current team, and the team's size (0 and 1 outside one).
-int teamRank()
+/// The start of part `part` of `count` items split into `parts` contiguous parts of
+/// (nearly) equal size; part p is [evenShare(count, p, parts), evenShare(count, p + 1, parts)).
+long evenShare(long count, int part, int parts)
 {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-int teamSize()
-{
-#ifdef _OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
+  return static_cast<long>(static_cast<std::int64_t>(count) * part / parts);
 }
 
 /// dem::minimumImage for the hot loops: a box without periodic axes (and not a 2D section)
@@ -686,8 +675,9 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   balancedRanges(pairBlockCost_, parts, pairRanges_);
   std::uint32_t* const blockCost = pairBlockCost_.data();
   const long* const pairRanges = pairRanges_.data();
-#pragma omp parallel num_threads(im.threads) if (im.parallel)
-  for (int part = teamRank(); part < parts; part += teamSize())
+  // The loops capture by value (the arrays' addresses, the constants) and the two large
+  // objects they use by reference (WorkerTeam::run).
+  team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
   for (long b = pairRanges[part]; b < pairRanges[part + 1]; ++b) {
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
 #if ROCKDEM_AVX2_KERNEL
@@ -750,14 +740,13 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
       pairLive[k] = 1;
       if (fn != 0.0) {
         // Two threads may mark the same particle: both write 1.
-#pragma omp atomic write
-        touching[i] = 1;
-#pragma omp atomic write
-        touching[j] = 1;
+        __atomic_store_n(&touching[i], std::uint8_t{ 1 }, __ATOMIC_RELAXED);
+        __atomic_store_n(&touching[j], std::uint8_t{ 1 }, __ATOMIC_RELAXED);
       }
     }
     blockCost[b] = static_cast<std::uint32_t>((blockEnd - b * kPairBlock) * kPairCost + evaluated * kTouchingPairCost);
   }
+  });
 
   // 2. Bonds, each once (state updated and failure checked only on a real step).
   computeBondForces(incrementHistory);
@@ -774,7 +763,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     wallModel.rollingFriction = 0.0;
   }
   const bool wallRolling = wallModel.rollingFriction > 0.0;
-  auto wallContact = [&](std::size_t e, std::size_t i, Vec3& force, Vec3& torque) {
+  auto wallContact = [&](std::size_t e, std::size_t i, Vec3& force, Vec3& torque) __attribute__((always_inline)) {
     const Wall& wall = model_.walls[im.wallIndex[e]];
     const double side = wall.side == 0 ? 1.0 : -1.0;
     const double distance = (p.position[i][wall.axis] - wall.position) * side;
@@ -866,8 +855,10 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
   const double skinLimit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = skinLimit * skinLimit;
-#pragma omp parallel num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-  for (int part = teamRank(); part < parts; part += teamSize())
+  staleByRank_.assign(static_cast<std::size_t>(std::max(parts, 1)), 0);
+  std::uint8_t* const staleByRank = staleByRank_.data();
+  team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
+  bool rankStale = false; // this rank's drift made the list stale
   for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
@@ -953,7 +944,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
         if (kickAndDrift(static_cast<std::size_t>(li), movePosition, moveVelocity, moveSpin, moveDisplacement,
                          netForce, netTorque, positionAtBuild, inverseMass, inverseInertia, stepDt, half, planar,
                          anyPeriodic, d, separationOf, limit2)) {
-          stale = true;
+          rankStale = true;
         }
       }
     }
@@ -961,6 +952,11 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     chunkCost[chunk] = static_cast<std::uint32_t>(
       (chunkEnd - chunkBegin) * (kParticleCost + (driftNext ? kDriftCost : 0)) + walked * kEntryCost +
       (wallStart[chunkEnd] - wallStart[chunkBegin]) * kWallEntryCost + bondEntries * kEntryCost);
+  }
+  staleByRank[part] = rankStale ? 1 : 0;
+  });
+  for (int part = 0; part < std::max(parts, 1); ++part) {
+    stale = stale || staleByRank[part] != 0;
   }
   drifted_ = driftNext;
   driftedStale_ = driftNext && stale;
@@ -1046,8 +1042,14 @@ void CpuBackend::computeBondForces(bool incrementState)
   if (count == 0) {
     return;
   }
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel)
-  for (long lk = 0; lk < count; ++lk) {
+  const int parts = im.parallel ? im.threads : 1;
+  team_.run(parts, [=, &im, &p, &b](int part) __attribute__((flatten)) {
+  const long first = evenShare(count, part, parts);
+  const long last = evenShare(count, part + 1, parts);
+  // tan(friction angle) of the last bond whose shear failure this rank tested (NaN: none).
+  double lastAngle = std::numeric_limits<double>::quiet_NaN();
+  double lastTan = 0.0;
+  for (long lk = first; lk < last; ++lk) {
     const std::size_t k = static_cast<std::size_t>(lk);
     if (b.broken(k)) {
       continue;
@@ -1070,8 +1072,12 @@ void CpuBackend::computeBondForces(bool incrementState)
                     b.twistingMoment[k], b.bendingMoment[k]);
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
         b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
-      const BondFailure failure = softenedBondFailure(stresses, b.tensileStrength[k], b.cohesion[k],
-                                                      b.frictionAngle[k], b.softening[k], b.damage[k]);
+      if (!(b.frictionAngle[k] == lastAngle)) { // most bonds of a rock share one angle
+        lastAngle = b.frictionAngle[k];
+        lastTan = std::tan(lastAngle);
+      }
+      const BondFailure failure = softenedBondFailureWithTan(stresses, b.tensileStrength[k], b.cohesion[k],
+                                                             lastTan, b.softening[k], b.damage[k]);
       if (failure != BondFailure::Intact) {
         if (countDissipation_) {
           // the energy its springs held, which breaking takes out of the model
@@ -1097,6 +1103,7 @@ void CpuBackend::computeBondForces(bool incrementState)
       im.bondTorqueJ[k] *= share;
     }
   }
+  });
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1130,13 +1137,22 @@ void CpuBackend::step(bool last)
   const double* const inverseMass = im.inverseMass.data();
   const double* const inverseInertia = im.inverseInertia.data();
   if (!drifted_) {
-#pragma omp parallel for schedule(static) num_threads(im.threads) if (im.parallel) reduction(|| : stale)
-    for (long li = 0; li < count; ++li) {
-      if (kickAndDrift(static_cast<std::size_t>(li), position, velocity, spin, displacement, force, torque,
-                       positionAtBuild, inverseMass, inverseInertia, dt, half, planar, anyPeriodic, d,
-                       separationOf, limit2)) {
-        stale = true;
+    const int parts = im.parallel ? im.threads : 1;
+    staleByRank_.assign(static_cast<std::size_t>(parts), 0);
+    std::uint8_t* const staleByRank = staleByRank_.data();
+    team_.run(parts, [&](int part) {
+      bool rankStale = false;
+      for (long li = evenShare(count, part, parts); li < evenShare(count, part + 1, parts); ++li) {
+        if (kickAndDrift(static_cast<std::size_t>(li), position, velocity, spin, displacement, force, torque,
+                         positionAtBuild, inverseMass, inverseInertia, dt, half, planar, anyPeriodic, d,
+                         separationOf, limit2)) {
+          rankStale = true;
+        }
       }
+      staleByRank[part] = rankStale ? 1 : 0;
+    });
+    for (int part = 0; part < parts; ++part) {
+      stale = stale || staleByRank[part] != 0;
     }
   }
   drifted_ = false;

@@ -12,13 +12,15 @@
 // velocity. No floating-point atomics, fixed summation order. It steps the Model's own
 // particle arrays in place. SI units throughout.
 //
-// Threads: the pair loop and the gather give each thread one range of equal work, as the
+// Threads: the loops of a step run on a WorkerTeam (threads kept between loops, waiting
+// by a short spin, then asleep). The pair loop and the gather give each thread one range of equal work, as the
 // last step counted it (balancedRanges below), and within one run() the gather also does
 // the next step's half kick and drift of the particles it has just gathered (the last step
 // of a run does not, so the model holds whole steps between runs). Neither changes a bit.
 #pragma once
 
 #include "backends/ContactState.h"
+#include "backends/cpu/WorkerTeam.h"
 #include "dem/Backend.h"
 #include "dem/ContactLaws.h"
 #include "dem/Model.h"
@@ -82,6 +84,11 @@ private:
   bool driftedStale_ = false;
   // countDissipation: the steps add to the contact state's dampingWork and breakEnergy.
   bool countDissipation_ = false;
+  // The threads of the step's loops (drift, pairs, bonds, gather), kept between loops
+  // (WorkerTeam.h); the neighbour rebuild still uses OpenMP. Each rank's "the list is
+  // stale" from its share of the drift.
+  WorkerTeam team_;
+  std::vector<std::uint8_t> staleByRank_;
 };
 
 } // namespace dem
