@@ -10,6 +10,7 @@
 #include "backends/cpu/TouchingPair.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -127,6 +128,22 @@ inline Vec3 withSignFlipped(const Vec3& v, bool flip)
   return out;
 }
 
+/// Adds particle i's share of a pair's or bond's force and torques to its sums, without a
+/// branch on the entry (whether it acts and which end i is are data, and a branch on them
+/// was mispredicted about one entry in three): i of the pair adds the force and torque I,
+/// j minus the force and torque J, and an entry that does not act (`live` false) adds
+/// -0.0, which leaves every sum as it is (x + -0.0 is x for every x, -0.0 included), as
+/// skipping it did; minus the force is the force with its sign bit flipped (x - y is
+/// x + (-y)). The same bits as the branches.
+[[gnu::always_inline]] inline void addEntry(bool live, bool asJ, const Vec3* force, const Vec3* torqueI,
+                                            const Vec3* torqueJ, Vec3& sumForce, Vec3& sumTorque)
+{
+  const Vec3* f = chooseRow(live, force, &kNegativeZero);
+  const Vec3* t = chooseRow(live, chooseRow(asJ, torqueJ, torqueI), &kNegativeZero);
+  sumForce += withSignFlipped(*f, live && asJ);
+  sumTorque += *t;
+}
+
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
 /// stack) and evaluates them at the block's end, while its arrays are still in cache.
 constexpr long kPairBlock = 256;
@@ -134,18 +151,27 @@ constexpr long kPairBlock = 256;
 /// Particles per chunk of the gather (the unit of its cost count and of its partition).
 constexpr long kGatherChunk = 256;
 
-// The work of a block of pairs and of a chunk of the gather, counted as the loops run, in
-// rough relative units, fitted to the two threads' times on the settled 100k pack (where
-// the contacts sit in the lower slots): a pair's test 2 and a touching pair 9 more (with
-// AVX2 about 40 and 160 instructions); in the gather a particle 4, each entry of its pair
-// list that it walks 3, a wall entry 4, and its kick and drift for the next step 1. Only
-// the ratios matter, and only for speed (balancedRanges).
+// The work of a block of pairs, counted as the loop runs, in rough relative units fitted to
+// the two threads' times on the settled 100k pack (where the contacts sit in the lower
+// slots): a pair's test 2 and a touching pair 9 more (with AVX2 about 40 and 160
+// instructions). Only the ratios matter, and only for speed (balancedRanges).
 constexpr std::uint32_t kPairCost = 2;
 constexpr std::uint32_t kTouchingPairCost = 9;
-constexpr std::uint32_t kParticleCost = 4;
-constexpr std::uint32_t kEntryCost = 3;
-constexpr std::uint32_t kWallEntryCost = 4;
-constexpr std::uint32_t kDriftCost = 1; // a particle's kick and drift, done in the gather
+// The work of a chunk of the gather is the time it took (ns) at its last evaluation,
+// averaged with the one before so that one interrupted chunk does not swing the split. A
+// count weighted by hand (a particle 4, an entry 3, a wall entry 4) left the two threads of
+// a cemented specimen's gather 60 % apart (its platens' Hertz contacts, its bonds' memory
+// traffic); timing the pair blocks as well gained nothing measurable. Timing decides only
+// who computes what, never a bit of a result. Before a chunk has run: 50 ns per particle.
+constexpr std::uint32_t kUnmeasuredParticleCost = 50;
+
+/// The time since `start` (ns) averaged with the last cost, at least 1.
+std::uint32_t measuredCost(std::chrono::steady_clock::time_point start, std::uint32_t last)
+{
+  const std::int64_t took =
+    std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+  return static_cast<std::uint32_t>(std::clamp<std::int64_t>((took + last) / 2, 1, std::int64_t{ 1 } << 30));
+}
 } // namespace
 
 void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds)
@@ -828,10 +854,17 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const double* const mass = p.mass.data();
   const std::uint32_t* const adjacencyStart = im.adjacencyStart.data();
   const std::uint32_t* const adjacency = im.adjacency.data();
+  const std::size_t* const bondAdjacencyStart = im.bondAdjacencyStart.data();
+  const std::size_t* const bondAdjacency = im.bondAdjacency.data();
+  const Vec3* const bondForce = im.bondForce.data();
+  const Vec3* const bondTorqueI = im.bondTorqueI.data();
+  const Vec3* const bondTorqueJ = im.bondTorqueJ.data();
+  const std::uint8_t* const bondFailure = model_.bonds.failure.data();
+  const std::uint8_t intact = static_cast<std::uint8_t>(BondFailure::Intact);
   // Each thread takes one contiguous range of chunks of about equal work, as the pair loop
   // takes its blocks (and, with driftNext, moves the particles it gathered).
   const long chunks = (count + kGatherChunk - 1) / kGatherChunk;
-  gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kParticleCost);
+  gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kUnmeasuredParticleCost);
   balancedRanges(gatherChunkCost_, parts, gatherRanges_);
   std::uint32_t* const chunkCost = gatherChunkCost_.data();
   const long* const gatherRanges = gatherRanges_.data();
@@ -862,7 +895,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
-    std::uint32_t walked = 0; // entries of the pair lists walked
+    const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
     for (long li = chunkBegin; li < chunkEnd; ++li) {
       const std::size_t i = static_cast<std::size_t>(li);
       Vec3 force = mass[i] * gravity;
@@ -870,39 +903,22 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
       // Without a touching pair (none has a non-zero normal force) the list adds nothing.
       const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
       touching[i] = 0;
-      walked += pairEnd - adjacencyStart[i];
       for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
-        // A pair without normal force (not touching, or no force) adds nothing; with it,
-        // particle i of the pair adds its force and torque I, particle j minus the force and
-        // torque J. Without a branch on either (both are data, and a branch on them was
-        // mispredicted about one entry in three): an entry without force adds -0.0, which
-        // leaves every sum as it is (x + -0.0 is x for every x, -0.0 included), and minus
-        // the force is the force with its sign bit flipped (x - y is x + (-y)).
+        // A pair without normal force (not touching, or no force) adds nothing (addEntry).
         const std::uint32_t entry = adjacency[e];
         const std::uint32_t k = entry >> 1;
-        const bool live = pairNormal[k] != 0.0;
-        const bool asJ = (entry & 1u) != 0;
-        const Vec3* f = chooseRow(live, pairForce + k, &kNegativeZero);
-        const Vec3* t = chooseRow(live, chooseRow(asJ, pairTorqueJ + k, pairTorqueI + k), &kNegativeZero);
-        force += withSignFlipped(*f, live && asJ);
-        torque += *t;
+        addEntry(pairNormal[k] != 0.0, (entry & 1u) != 0, pairForce + k, pairTorqueI + k, pairTorqueJ + k,
+                 force, torque);
       }
       for (std::size_t e = wallStart[i]; e < wallStart[i + 1]; ++e) {
         wallContact(e, i, force, torque);
       }
       if (anyBonds) {
-        for (std::size_t e = im.bondAdjacencyStart[i]; e < im.bondAdjacencyStart[i + 1]; ++e) {
-          const std::size_t b = im.bondAdjacency[e] >> 1;
-          if (model_.bonds.broken(b)) {
-            continue;
-          }
-          if (im.bondAdjacency[e] & 1u) {
-            force -= im.bondForce[b];
-            torque += im.bondTorqueJ[b];
-          } else {
-            force += im.bondForce[b];
-            torque += im.bondTorqueI[b];
-          }
+        // A broken bond adds nothing (without a branch, as the pairs: bonds break at random).
+        for (std::size_t e = bondAdjacencyStart[i]; e < bondAdjacencyStart[i + 1]; ++e) {
+          const std::size_t b = bondAdjacency[e] >> 1;
+          addEntry(bondFailure[b] == intact, (bondAdjacency[e] & 1u) != 0, bondForce + b, bondTorqueI + b,
+                   bondTorqueJ + b, force, torque);
         }
       }
       if (anyExternal) {
@@ -948,10 +964,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
         }
       }
     }
-    const std::uint64_t bondEntries = anyBonds ? im.bondAdjacencyStart[chunkEnd] - im.bondAdjacencyStart[chunkBegin] : 0;
-    chunkCost[chunk] = static_cast<std::uint32_t>(
-      (chunkEnd - chunkBegin) * (kParticleCost + (driftNext ? kDriftCost : 0)) + walked * kEntryCost +
-      (wallStart[chunkEnd] - wallStart[chunkBegin]) * kWallEntryCost + bondEntries * kEntryCost);
+    chunkCost[chunk] = measuredCost(chunkStart, chunkCost[chunk]);
   }
   staleByRank[part] = rankStale ? 1 : 0;
   });
