@@ -298,11 +298,11 @@ TEST(Faults, ThreadsSayWhatRunsAndAbsurdCountsAreRefused)
   // The switch weighs the work per step (particles + 5 neighbour pairs + 6 bonds).
   const std::string serial = "CPU serial (work ";
   EXPECT_TRUE(contains(sim.path(), serial)) << sim.path();
-  EXPECT_TRUE(contains(sim.path(), ", below the parallel threshold of 30000; threads are used from there on)"))
+  EXPECT_TRUE(contains(sim.path(), ", below the parallel threshold of 8000; threads are used from there on)"))
     << sim.path();
   m.solver.threads = 1;
   const std::string one = Simulation(m).path();
-  EXPECT_TRUE(contains(one, serial) && contains(one, ", below the parallel threshold of 30000)")) << one;
+  EXPECT_TRUE(contains(one, serial) && contains(one, ", below the parallel threshold of 8000)")) << one;
   m.solver.parallelThreshold = 0;
   EXPECT_EQ(Simulation(m).path(), "CPU serial (Threads = 1)");
   m.solver.threads = 2;

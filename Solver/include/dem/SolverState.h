@@ -28,7 +28,7 @@ struct SolverSettings {
   /// pack of N particles is about 3 N, a dense one about 15 N, a cemented one about 32 N).
   /// 0: always on threads. Set from the measured crossover of one and two threads on a
   /// 2-core machine (Documentation/Benchmarks-Solver.md section 1, "Serial or parallel").
-  std::int64_t parallelThreshold = 30000;
+  std::int64_t parallelThreshold = 8000;
   /// Test-only: use requestedTimestep even above the critical timestep (to show that an
   /// unstable run is detected). Never exposed in the GUI.
   bool allowUnsafeTimestep = false;
