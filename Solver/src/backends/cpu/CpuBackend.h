@@ -1,6 +1,6 @@
 // RockDEM engine: the CPU backend (serial while the work per step is below
-// SolverSettings::parallelThreshold particle-equivalents, OpenMP above, decided again at
-// every neighbour build; the result never depends on the number of threads).
+// SolverSettings::parallelThreshold particle-equivalents, on its threads above, decided
+// again at every neighbour build; the result never depends on the number of threads).
 //
 // One step (DESIGN.md "Solver step"): half kick -> drift (periodic wrap) -> wall control
 // (dem::controlWalls) and wall motion -> Verlet neighbour list update when any particle
