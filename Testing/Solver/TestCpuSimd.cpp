@@ -1,6 +1,7 @@
 // The CPU backend's AVX2 touching-pair kernel (Solver/src/backends/cpu/TouchingPairsAvx2.cpp)
 // gives the bits of its scalar pair loop: on the law's edge cases pair by pair, and over
-// whole runs with the scalar loop forced by ROCKDEM_CPU_SIMD=0. Skipped (and says so) on a
+// whole runs with the scalar loop forced by ROCKDEM_CPU_SIMD=0, and its scan lists the pairs the
+// scalar test lists. Skipped (and says so) on a
 // processor or build without the kernel.
 #include "backends/cpu/TouchingPair.h"
 
@@ -258,4 +259,99 @@ TEST(CpuSimd, RunsGiveTheScalarLoopBits)
       EXPECT_EQ(scalar.contacts.size(), vector.contacts.size());
     }
   }
+}
+
+// The AVX2 scan (scanPairsAvx2) lists exactly the pairs that the scalar loop's test says
+// touch, and as ended exactly those that do not touch and may hold state, each list in
+// pair order, for blocks of every length 1 to 40 (groups of four and a last partial group)
+// and every mix of the four lanes: pairs apart, inside the kApart margin, just touching,
+// at zero distance, and live or not. It writes nothing beyond its lists' kScanSlack spare
+// entries.
+TEST(CpuSimd, ScanListsWhatTheScalarTestLists)
+{
+  if (!kernelAvailable()) {
+    GTEST_SKIP() << "no AVX2 kernel on this processor or build: the scalar loop runs alone";
+  }
+  std::mt19937_64 random(20261207);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int pairs = 400;
+  std::vector<double> position(3 * 2 * pairs), radius(2 * pairs);
+  std::vector<std::uint32_t> pairI(pairs), pairJ(pairs);
+  std::vector<std::uint8_t> live(pairs);
+  for (int k = 0; k < pairs; ++k) {
+    const int i = 2 * k, j = 2 * k + 1;
+    pairI[k] = static_cast<std::uint32_t>(i);
+    pairJ[k] = static_cast<std::uint32_t>(j);
+    radius[i] = 1e-3 * (0.5 + unit(random));
+    radius[j] = 1e-3 * (0.5 + unit(random));
+    const double reach = radius[i] + radius[j];
+    // The gap along a random direction: apart, touching, at the edge, or at zero distance.
+    double distance = 0.0;
+    switch (k % 5) {
+    case 0: distance = reach * (1.0 + 0.5 * unit(random)); break;  // apart
+    case 1: distance = reach * (1.0 - 0.1 * unit(random)); break;  // touching
+    case 2: distance = reach; break;                                // overlap 0 or within the margin
+    case 3: distance = std::nextafter(reach, 0.0); break;            // just touching
+    default: distance = (k % 10 == 4) ? 0.0 : reach * unit(random); // zero distance or deep
+    }
+    const double a = 2.0 * M_PI * unit(random), c = 2.0 * unit(random) - 1.0, s = std::sqrt(1.0 - c * c);
+    for (int d = 0; d < 3; ++d) {
+      position[3 * i + d] = 0.01 * unit(random);
+    }
+    position[3 * j + 0] = position[3 * i + 0] + distance * s * std::cos(a);
+    position[3 * j + 1] = position[3 * i + 1] + distance * s * std::sin(a);
+    position[3 * j + 2] = position[3 * i + 2] + distance * c;
+    live[k] = static_cast<std::uint8_t>(random() % 2);
+  }
+  TouchingPairArrays arrays{};
+  arrays.position = position.data();
+  arrays.radius = radius.data();
+  arrays.pairI = pairI.data();
+  arrays.pairJ = pairJ.data();
+  arrays.live = live.data();
+  // The scalar loop's test (CpuBackend::computeForces).
+  auto touches = [&](int k) {
+    const int i = pairI[k], j = pairJ[k];
+    const double dx = position[3 * j] - position[3 * i], dy = position[3 * j + 1] - position[3 * i + 1],
+                 dz = position[3 * j + 2] - position[3 * i + 2];
+    const double reach = radius[i] + radius[j];
+    const double distance2 = (dx * dx + dy * dy) + dz * dz;
+    const bool apart = distance2 > kApart * (reach * reach);
+    const double distance = apart ? 0.0 : std::sqrt(distance2);
+    const double overlap = reach - distance;
+    return !(apart || overlap <= 0.0 || distance == 0.0);
+  };
+  int touching = 0, ended = 0;
+  for (int first = 0; first + 40 <= pairs; first += 40) {
+    for (int length = 1; length <= 40; ++length) {
+      const std::uint32_t poison = 0xdeadbeef;
+      std::vector<std::uint32_t> list(static_cast<std::size_t>(length) + kScanSlack + 4, poison);
+      std::vector<std::uint32_t> endedList(list.size(), poison);
+      std::size_t endedCount = 0;
+      const std::size_t listed = scanPairsAvx2(arrays, static_cast<std::size_t>(first),
+                                               static_cast<std::size_t>(first + length), list.data(),
+                                               endedList.data(), endedCount);
+      std::vector<std::uint32_t> expectList, expectEnded;
+      for (int k = first; k < first + length; ++k) {
+        if (touches(k)) {
+          expectList.push_back(static_cast<std::uint32_t>(k));
+        } else if (live[k]) {
+          expectEnded.push_back(static_cast<std::uint32_t>(k));
+        }
+      }
+      ASSERT_EQ(std::vector<std::uint32_t>(list.begin(), list.begin() + listed), expectList)
+        << "pairs " << first << " + " << length;
+      ASSERT_EQ(std::vector<std::uint32_t>(endedList.begin(), endedList.begin() + endedCount), expectEnded)
+        << "pairs " << first << " + " << length;
+      for (std::size_t e = static_cast<std::size_t>(length) + kScanSlack; e < list.size(); ++e) {
+        ASSERT_EQ(list[e], poison) << "written beyond the slack";
+        ASSERT_EQ(endedList[e], poison) << "written beyond the slack";
+      }
+      touching += static_cast<int>(listed);
+      ended += static_cast<int>(endedCount);
+    }
+  }
+  // Both lists were exercised.
+  EXPECT_GT(touching, 1000);
+  EXPECT_GT(ended, 500);
 }
