@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <vector>
 
 namespace dem {
 namespace {
@@ -81,6 +83,28 @@ double restitutionForDamping(ContactLaw law, double c)
   return -v;
 }
 
+namespace {
+double solveDampingForRestitution(ContactLaw law, double e);
+
+/// The last few (law, restitution) -> damping coefficients solved in this process: each
+/// solve integrates about 60 collisions (about 20 ms), and every Simulation asks for it.
+struct DampingCache {
+  std::mutex mutex;
+  struct Entry {
+    ContactLaw law;
+    double restitution;
+    double damping;
+  };
+  std::vector<Entry> entries; // most recent last, at most kEntries
+  static constexpr std::size_t kEntries = 8;
+};
+DampingCache& dampingCache()
+{
+  static DampingCache cache;
+  return cache;
+}
+} // namespace
+
 double dampingForRestitution(ContactLaw law, double e)
 {
   if (!(e > 0.0 && e <= 1.0)) {
@@ -90,6 +114,27 @@ double dampingForRestitution(ContactLaw law, double e)
   if (e == 1.0) {
     return 0.0;
   }
+  DampingCache& cache = dampingCache();
+  {
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    for (const DampingCache::Entry& entry : cache.entries) {
+      if (entry.law == law && entry.restitution == e) {
+        return entry.damping; // the value the solve below gave, bit for bit
+      }
+    }
+  }
+  const double damping = solveDampingForRestitution(law, e); // may throw: nothing cached
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  if (cache.entries.size() == DampingCache::kEntries) {
+    cache.entries.erase(cache.entries.begin());
+  }
+  cache.entries.push_back({ law, e, damping });
+  return damping;
+}
+
+namespace {
+double solveDampingForRestitution(ContactLaw law, double e)
+{
   // e(c) decreases monotonically from 1 at c = 0: bisect in log(c).
   double lo = 1.0e-8;
   double hi = 1.0;
@@ -114,6 +159,7 @@ double dampingForRestitution(ContactLaw law, double e)
   }
   return std::sqrt(lo * hi);
 }
+} // namespace
 
 ContactModel makeContactModel(const Material& material, ContactLaw law)
 {

@@ -4,8 +4,12 @@
 #include "DynamicsFixtures.h"
 
 #include "dem/ContactLaws.h"
+#include "dem/Errors.h"
 
 #include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
 
 using namespace dem;
 using namespace dem::testing;
@@ -153,4 +157,33 @@ TEST(RestitutionCalibration, ClassicMappingOvershootsOursDoesNot)
       EXPECT_NEAR(restitutionForDamping(law, dampingForRestitution(law, e)), e, 1e-6);
     }
   }
+}
+
+// Every Simulation asks for the damping coefficient of its restitution, and each solve
+// integrates about 60 collisions: the last 8 (law, restitution) pairs are kept. A kept value
+// is the solved one bit for bit, for both laws, in any order of asking, after older pairs
+// have been dropped, and a restitution out of range is refused every time (nothing kept).
+TEST(ContactLaws, DampingForRestitutionAskedAgainIsTheSameValue)
+{
+  const std::vector<double> values = { 0.05, 0.2, 0.5, 0.9, 0.31, 0.47, 0.63, 0.77, 0.88, 0.12 };
+  std::vector<double> first;
+  for (ContactLaw law : { ContactLaw::Linear, ContactLaw::HertzMindlin }) {
+    for (double e : values) {
+      first.push_back(dampingForRestitution(law, e));
+    }
+  }
+  for (int round = 0; round < 3; ++round) {
+    std::size_t k = 0;
+    for (ContactLaw law : { ContactLaw::Linear, ContactLaw::HertzMindlin }) {
+      for (double e : values) {
+        const double again = dampingForRestitution(law, e);
+        EXPECT_EQ(std::memcmp(&again, &first[k], sizeof(double)), 0) << "e " << e << " round " << round;
+        ++k;
+      }
+    }
+    EXPECT_THROW(dampingForRestitution(ContactLaw::HertzMindlin, 0.0), InputError);
+    EXPECT_THROW(dampingForRestitution(ContactLaw::HertzMindlin, 1.5), InputError);
+  }
+  // The two laws need different coefficients for the same restitution (not confused).
+  EXPECT_NE(first[2], first[values.size() + 2]);
 }
