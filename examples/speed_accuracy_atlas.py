@@ -654,7 +654,10 @@ FULL["resolution"] = {
               + [(17000, 1, "ucs_triaxial")]
               # (nineteenth session: 40 and 28 across, seed 1, unconfined only, on two threads - the same
               # bits as one, Determinism - about 3.5e9 and 1.3e9 particle-steps)
-              + [(136000, 1, "ucs"), (47000, 1, "ucs")]),
+              + [(136000, 1, "ucs"), (47000, 1, "ucs")]
+              # (twentieth session: the friction angle at 20 across for seeds 2 and 3, one thread each,
+              # run side by side)
+              + [(17000, 2, "ucs_triaxial"), (17000, 3, "ucs_triaxial")]),
     "threads": {136000: 2, 47000: 2}}
 # The same sweep undamped (nineteenth session): is the UCS's rise with the size, which does not level off
 # by 20 across under Settling Damping 0.7, the damping's? The unconfined test at Settling Damping 0 and
