@@ -125,18 +125,22 @@ bool failsInShear(const BondStresses& stresses, double cohesion, double tanFrict
 {
   return stresses.tauMax >= cohesion + stresses.compressive * tanFriction;
 }
+
+// The brittle law: tension first, then Mohr-Coulomb shear.
+BondFailure brittleFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
+                           double tanFriction)
+{
+  if (stresses.sigmaMax >= tensileStrength) {
+    return BondFailure::Tension;
+  }
+  return failsInShear(stresses, cohesion, tanFriction) ? BondFailure::Shear : BondFailure::Intact;
+}
 } // namespace
 
 BondFailure bondFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
                         double frictionAngle)
 {
-  if (stresses.sigmaMax >= tensileStrength) {
-    return BondFailure::Tension;
-  }
-  if (failsInShear(stresses, cohesion, std::tan(frictionAngle))) {
-    return BondFailure::Shear;
-  }
-  return BondFailure::Intact;
+  return brittleFailure(stresses, tensileStrength, cohesion, std::tan(frictionAngle));
 }
 
 double softeningDamage(double stressRatio, double softeningRatio)
@@ -162,11 +166,8 @@ BondFailure softenedBondFailure(const BondStresses& elastic, double tensileStren
 BondFailure softenedBondFailureWithTan(const BondStresses& elastic, double tensileStrength, double cohesion,
                                        double tanFriction, double softeningRatio, double& damage)
 {
-  if (!(softeningRatio > 0.0)) { // dem::bondFailure
-    if (elastic.sigmaMax >= tensileStrength) {
-      return BondFailure::Tension;
-    }
-    return failsInShear(elastic, cohesion, tanFriction) ? BondFailure::Shear : BondFailure::Intact;
+  if (!(softeningRatio > 0.0)) {
+    return brittleFailure(elastic, tensileStrength, cohesion, tanFriction);
   }
   const double ratio = elastic.sigmaMax / tensileStrength;
   if (ratio >= 1.0 + softeningRatio) {

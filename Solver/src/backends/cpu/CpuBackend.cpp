@@ -888,7 +888,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const bool anyPeriodic = d.periodic[0] || d.periodic[1] || d.periodic[2];
   const double skinLimit = 0.5 * im.skinDistance; // m, drift that makes the neighbour list stale
   const double limit2 = skinLimit * skinLimit;
-  staleByRank_.assign(static_cast<std::size_t>(std::max(parts, 1)), 0);
+  staleByRank_.assign(static_cast<std::size_t>(parts), 0);
   std::uint8_t* const staleByRank = staleByRank_.data();
   team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
   bool rankStale = false; // this rank's drift made the list stale
@@ -968,7 +968,7 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   }
   staleByRank[part] = rankStale ? 1 : 0;
   });
-  for (int part = 0; part < std::max(parts, 1); ++part) {
+  for (int part = 0; part < parts; ++part) {
     stale = stale || staleByRank[part] != 0;
   }
   drifted_ = driftNext;
