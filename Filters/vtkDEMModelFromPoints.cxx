@@ -189,7 +189,7 @@ int vtkDEMModelFromPoints::RequestData(
     if (this->SpatialOrder)
     {
       // Neighbours in space next to each other in memory (ids stay the point indices).
-      dem::permuteParticles(model.particles, dem::storageOrder(model));
+      dem::permuteParticles(model.particles, dem::spatialOrder(model));
     }
     dem::updateMassProperties(model);
     // Particle ids are the input point indices: the engine's messages name the points.

@@ -12,8 +12,8 @@
  * Packs from other tools and hand-built test configurations (two spheres about to
  * collide) enter the pipeline this way.
  *
- * With Spatial Order on (the default) the particles are stored layer by layer in space
- * (dem::storageOrder) rather than in the input's point order; each keeps its input point
+ * With Spatial Order on (the default) the particles are stored along a space-filling
+ * (Morton) curve rather than in the input's point order; each keeps its input point
  * index as its Id. Off keeps the input order.
  */
 #ifndef vtkDEMModelFromPoints_h
@@ -29,7 +29,7 @@ public:
   vtkTypeMacro(vtkDEMModelFromPoints, vtkDEMModelSourceBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Spatial Order: store the particles layer by layer in space (1, default) or in
+  /// Spatial Order: store the particles along a space-filling curve (1, default) or in
   /// the input's point order (0). Ids are the input point indices either way.
   vtkSetMacro(SpatialOrder, vtkTypeBool);
   vtkGetMacro(SpatialOrder, vtkTypeBool);

@@ -4,7 +4,6 @@
 #include "dem/Errors.h"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <cmath>
 #include <fstream>
@@ -122,48 +121,6 @@ std::vector<std::size_t> spatialOrder(const Model& model)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 c = p.position[i] - model.domain.origin;
     key[i] = spread(cellOf(c.x())) | spread(cellOf(c.y())) << 1 | spread(cellOf(c.z())) << 2;
-  }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  return order;
-}
-
-std::vector<std::size_t> storageOrder(const Model& model)
-{
-  const Particles& p = model.particles;
-  const std::size_t n = p.size();
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    order[i] = i;
-  }
-  if (n == 0) {
-    return order;
-  }
-  const double cell = 2.0 * *std::max_element(p.radius.begin(), p.radius.end());
-  Vec3 lo = p.position[0];
-  Vec3 hi = p.position[0];
-  for (const Vec3& x : p.position) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  // At most 2^21 cells a side (a wider cell where the particles spread further), so that
-  // the key fits 64 bits.
-  constexpr double kMostCells = 2097151.0;
-  std::array<double, 3> width{};
-  std::array<std::uint64_t, 3> cells{};
-  for (int k = 0; k < 3; ++k) {
-    width[k] = std::max(cell, (hi[k] - lo[k]) / kMostCells);
-    cells[k] = static_cast<std::uint64_t>(std::floor((hi[k] - lo[k]) / width[k])) + 1;
-  }
-  std::array<int, 3> axes{ 0, 1, 2 }; // slowest first: the axis with the most cells
-  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return cells[a] > cells[b]; });
-  std::vector<std::uint64_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t k = 0;
-    for (int a : axes) {
-      const double c = std::floor((p.position[i][a] - lo[a]) / width[a]);
-      k = k * cells[a] + std::min(cells[a] - 1, static_cast<std::uint64_t>(std::max(0.0, c)));
-    }
-    key[i] = k;
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
   return order;

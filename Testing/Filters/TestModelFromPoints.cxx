@@ -139,11 +139,11 @@ TEST(ModelFromPoints, PointOutsideAnExplicitBoxIsAnError)
   EXPECT_NE(catcher->All().find("outside the model box"), std::string::npos) << catcher->All();
 }
 
-// Spatial Order (default on): the particles come out in the order of dem::storageOrder
-// (layer by layer), each with its input point index as its Id and that point's centre,
+// Spatial Order (default on): the particles come out along the Morton curve of
+// dem::spatialOrder, each with its input point index as its Id and that point's centre,
 // radius and velocity; Off keeps the input order. Input: a 6 x 6 x 6 lattice of 1 mm
 // spheres, 2.5 mm apart, listed in a scrambled order (index p at lattice site 97 p mod 216).
-TEST(ModelFromPoints, SpatialOrderStoresTheParticlesLayerByLayerAndKeepsTheirIds)
+TEST(ModelFromPoints, SpatialOrderStoresTheParticlesAlongACurveAndKeepsTheirIds)
 {
   constexpr int side = 6;
   constexpr int count = side * side * side;
@@ -185,9 +185,9 @@ TEST(ModelFromPoints, SpatialOrderStoresTheParticlesLayerByLayerAndKeepsTheirIds
     identity[s] = s;
     EXPECT_EQ(inputOrder.particles.id[s], static_cast<std::int64_t>(s));
   }
-  // On: slot s holds the particle that dem::storageOrder puts there, with all its data,
+  // On: slot s holds the particle that dem::spatialOrder puts there, with all its data,
   // and the order is not the input's.
-  const std::vector<std::size_t> order = dem::storageOrder(inputOrder);
+  const std::vector<std::size_t> order = dem::spatialOrder(inputOrder);
   ASSERT_NE(order, identity);
   for (std::size_t s = 0; s < order.size(); ++s)
   {
@@ -199,7 +199,7 @@ TEST(ModelFromPoints, SpatialOrderStoresTheParticlesLayerByLayerAndKeepsTheirIds
     EXPECT_EQ(spatial.particles.mass[s], inputOrder.particles.mass[input]);
   }
   // Neighbours in space are near in the list: the mean distance between consecutive
-  // slots, in lattice spacings, is small in storage order and large in the scrambled input.
+  // slots, in lattice spacings, is small along the curve and large in the scrambled input.
   auto meanStep = [](const dem::Model& m) {
     double sum = 0.0;
     for (std::size_t s = 1; s < m.particles.size(); ++s)
@@ -208,7 +208,7 @@ TEST(ModelFromPoints, SpatialOrderStoresTheParticlesLayerByLayerAndKeepsTheirIds
     }
     return sum / static_cast<double>(m.particles.size() - 1);
   };
-  std::printf("[spatial order] mean step between consecutive slots: %.2f spacings in storage order, %.2f in "
+  std::printf("[spatial order] mean step between consecutive slots: %.2f spacings along the curve, %.2f in "
               "the input's order\n", meanStep(spatial), meanStep(inputOrder));
   EXPECT_LT(meanStep(spatial), 2.0);
   EXPECT_GT(meanStep(inputOrder), 4.0);

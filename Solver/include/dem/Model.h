@@ -147,18 +147,6 @@ RemovedParticles removeParticles(Model& model, const std::vector<std::uint8_t>& 
 /// present order. Neighbours in space then sit near each other in memory. Deterministic.
 std::vector<std::size_t> spatialOrder(const Model& model);
 
-/// The particle slots in the order DEM Model From Points stores a model in (Spatial Order;
-/// Build Pack uses spatialOrder): the cells of a grid one largest diameter wide over the particles'
-/// centres, layer by layer along the axis with the most cells, row by row within a layer
-/// along the axis with the fewest, slots within a cell in their present order.
-/// Deterministic. A particle's neighbours then lie within about two layers of it in memory,
-/// and two threads, which take the slots in two halves, split the model across its longest
-/// axis, through its smallest section: most of a thread's contacts and bonds join its own
-/// particles (Benchmarks-Solver.md, "Grains stored in space order"; the Morton order of
-/// spatialOrder measured the same on a cemented specimen and 8 % slower on a tall settled
-/// pack on two threads).
-std::vector<std::size_t> storageOrder(const Model& model);
-
 /// Reorders every per-particle array: slot s receives the particle of slot order[s]
 /// (order is a permutation of the slots). Ids move with their particles; contact history
 /// and bonds are keyed by id and stay valid.
