@@ -186,11 +186,6 @@ int vtkDEMModelFromPoints::RequestData(
       }
     }
     model.nextId = static_cast<std::int64_t>(n);
-    if (this->SpatialOrder)
-    {
-      // Neighbours in space next to each other in memory (ids stay the point indices).
-      dem::permuteParticles(model.particles, dem::spatialOrder(model));
-    }
     dem::updateMassProperties(model);
     // Particle ids are the input point indices: the engine's messages name the points.
     dem::requireDistinctCentres(d, model.particles);
@@ -222,5 +217,4 @@ int vtkDEMModelFromPoints::RequestData(
 void vtkDEMModelFromPoints::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SpatialOrder: " << this->SpatialOrder << "\n";
 }

@@ -11,10 +11,6 @@
  *
  * Packs from other tools and hand-built test configurations (two spheres about to
  * collide) enter the pipeline this way.
- *
- * With Spatial Order on (the default) the particles are stored along a space-filling
- * (Morton) curve rather than in the input's point order; each keeps its input point
- * index as its Id. Off keeps the input order.
  */
 #ifndef vtkDEMModelFromPoints_h
 #define vtkDEMModelFromPoints_h
@@ -29,20 +25,12 @@ public:
   vtkTypeMacro(vtkDEMModelFromPoints, vtkDEMModelSourceBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Spatial Order: store the particles along a space-filling curve (1, default) or in
-  /// the input's point order (0). Ids are the input point indices either way.
-  vtkSetMacro(SpatialOrder, vtkTypeBool);
-  vtkGetMacro(SpatialOrder, vtkTypeBool);
-  vtkBooleanMacro(SpatialOrder, vtkTypeBool);
-
 protected:
   vtkDEMModelFromPoints();
   ~vtkDEMModelFromPoints() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
-  vtkTypeBool SpatialOrder = 1;
 
 private:
   vtkDEMModelFromPoints(const vtkDEMModelFromPoints&) = delete;

@@ -16,8 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
-#include <vector>
 
 namespace
 {
@@ -137,81 +135,4 @@ TEST(ModelFromPoints, PointOutsideAnExplicitBoxIsAnError)
   f->AddObserver(vtkCommand::ErrorEvent, catcher);
   EXPECT_FALSE(UpdateSucceeded(f));
   EXPECT_NE(catcher->All().find("outside the model box"), std::string::npos) << catcher->All();
-}
-
-// Spatial Order (default on): the particles come out along the Morton curve of
-// dem::spatialOrder, each with its input point index as its Id and that point's centre,
-// radius and velocity; Off keeps the input order. Input: a 6 x 6 x 6 lattice of 1 mm
-// spheres, 2.5 mm apart, listed in a scrambled order (index p at lattice site 97 p mod 216).
-TEST(ModelFromPoints, SpatialOrderStoresTheParticlesAlongACurveAndKeepsTheirIds)
-{
-  constexpr int side = 6;
-  constexpr int count = side * side * side;
-  vtkNew<vtkPolyData> pd;
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> r;
-  r->SetName("Radius");
-  vtkNew<vtkDoubleArray> v;
-  v->SetName("Velocity");
-  v->SetNumberOfComponents(3);
-  for (int p = 0; p < count; ++p)
-  {
-    const int site = (97 * p) % count; // 97 and 216 are coprime: every site once
-    pts->InsertNextPoint(0.0025 * (site % side), 0.0025 * ((site / side) % side), 0.0025 * (site / (side * side)));
-    r->InsertNextValue(0.001 + 1e-6 * p);
-    v->InsertNextTuple3(p, -p, 0.5 * p);
-  }
-  pd->SetPoints(pts);
-  pd->GetPointData()->AddArray(r);
-  pd->GetPointData()->AddArray(v);
-
-  auto modelOf = [&](bool spatial) {
-    vtkNew<vtkDEMModelFromPoints> f;
-    f->SetInputData(pd);
-    f->SetSpatialOrder(spatial);
-    EXPECT_TRUE(UpdateSucceeded(f));
-    return rockdem::MultiBlockToModel(vtkMultiBlockDataSet::SafeDownCast(f->GetOutputDataObject(0)));
-  };
-  const dem::Model inputOrder = modelOf(false);
-  const dem::Model spatial = modelOf(true);
-  ASSERT_EQ(inputOrder.particles.size(), static_cast<std::size_t>(count));
-  ASSERT_EQ(spatial.particles.size(), static_cast<std::size_t>(count));
-
-  // Off: slot s is input point s.
-  std::vector<std::size_t> identity(count);
-  for (std::size_t s = 0; s < identity.size(); ++s)
-  {
-    identity[s] = s;
-    EXPECT_EQ(inputOrder.particles.id[s], static_cast<std::int64_t>(s));
-  }
-  // On: slot s holds the particle that dem::spatialOrder puts there, with all its data,
-  // and the order is not the input's.
-  const std::vector<std::size_t> order = dem::spatialOrder(inputOrder);
-  ASSERT_NE(order, identity);
-  for (std::size_t s = 0; s < order.size(); ++s)
-  {
-    const std::size_t input = order[s];
-    EXPECT_EQ(spatial.particles.id[s], static_cast<std::int64_t>(input));
-    EXPECT_EQ(spatial.particles.position[s], inputOrder.particles.position[input]);
-    EXPECT_EQ(spatial.particles.radius[s], inputOrder.particles.radius[input]);
-    EXPECT_EQ(spatial.particles.velocity[s], inputOrder.particles.velocity[input]);
-    EXPECT_EQ(spatial.particles.mass[s], inputOrder.particles.mass[input]);
-  }
-  // Neighbours in space are near in the list: the mean distance between consecutive
-  // slots, in lattice spacings, is small along the curve and large in the scrambled input.
-  auto meanStep = [](const dem::Model& m) {
-    double sum = 0.0;
-    for (std::size_t s = 1; s < m.particles.size(); ++s)
-    {
-      sum += (m.particles.position[s] - m.particles.position[s - 1]).norm() / 0.0025;
-    }
-    return sum / static_cast<double>(m.particles.size() - 1);
-  };
-  std::printf("[spatial order] mean step between consecutive slots: %.2f spacings along the curve, %.2f in "
-              "the input's order\n", meanStep(spatial), meanStep(inputOrder));
-  EXPECT_LT(meanStep(spatial), 2.0);
-  EXPECT_GT(meanStep(inputOrder), 4.0);
-  EXPECT_EQ(spatial.domain.origin, inputOrder.domain.origin);
-  EXPECT_EQ(spatial.domain.size, inputOrder.domain.size);
 }
