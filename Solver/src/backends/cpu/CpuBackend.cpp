@@ -151,6 +151,9 @@ constexpr long kPairBlock = 256;
 /// Particles per chunk of the gather (the unit of its cost count and of its partition).
 constexpr long kGatherChunk = 256;
 
+/// Bonds per chunk of the bond loop (the unit of its timing and of its partition).
+constexpr long kBondChunk = 512;
+
 // The work of a block of pairs, counted as the loop runs, in rough relative units fitted to
 // the two threads' times on the settled 100k pack (where the contacts sit in the lower
 // slots): a pair's test 2 and a touching pair 9 more (with AVX2 about 40 and 160
@@ -164,6 +167,10 @@ constexpr std::uint32_t kTouchingPairCost = 9;
 // traffic); timing the pair blocks as well gained nothing measurable. Timing decides only
 // who computes what, never a bit of a result. Before a chunk has run: 50 ns per particle.
 constexpr std::uint32_t kUnmeasuredParticleCost = 50;
+// The bond loop's chunks are timed the same way: equal counts of bonds left the threads
+// unequal work where the bonds of one half of a specimen have broken (a broken bond costs
+// a byte's test). Before a chunk has run: 50 ns per bond.
+constexpr std::uint32_t kUnmeasuredBondCost = 50;
 
 /// The time since `start` (ns) averaged with the last cost, at least 1.
 std::uint32_t measuredCost(std::chrono::steady_clock::time_point start, std::uint32_t last)
@@ -1056,13 +1063,20 @@ void CpuBackend::computeBondForces(bool incrementState)
     return;
   }
   const int parts = im.parallel ? im.threads : 1;
+  // Each thread takes one contiguous range of chunks of about equal time at the last step.
+  const long chunks = (count + kBondChunk - 1) / kBondChunk;
+  bondChunkCost_.resize(static_cast<std::size_t>(chunks), kBondChunk * kUnmeasuredBondCost);
+  balancedRanges(bondChunkCost_, parts, bondRanges_);
+  std::uint32_t* const chunkCost = bondChunkCost_.data();
+  const long* const bondRanges = bondRanges_.data();
   team_.run(parts, [=, &im, &p, &b](int part) __attribute__((flatten)) {
-  const long first = evenShare(count, part, parts);
-  const long last = evenShare(count, part + 1, parts);
   // tan(friction angle) of the last bond whose shear failure this rank tested (NaN: none).
   double lastAngle = std::numeric_limits<double>::quiet_NaN();
   double lastTan = 0.0;
-  for (long lk = first; lk < last; ++lk) {
+  for (long chunk = bondRanges[part]; chunk < bondRanges[part + 1]; ++chunk) {
+  const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
+  const long chunkEnd = std::min(count, (chunk + 1) * kBondChunk);
+  for (long lk = chunk * kBondChunk; lk < chunkEnd; ++lk) {
     const std::size_t k = static_cast<std::size_t>(lk);
     if (b.broken(k)) {
       continue;
@@ -1115,6 +1129,8 @@ void CpuBackend::computeBondForces(bool incrementState)
       im.bondTorqueI[k] *= share;
       im.bondTorqueJ[k] *= share;
     }
+  }
+  chunkCost[chunk] = measuredCost(chunkStart, chunkCost[chunk]);
   }
   });
 }

@@ -73,11 +73,12 @@ private:
   // backend is made); the scalar loop otherwise. The same bits either way.
   bool simd_ = false;
   ContactState state_;
-  // The work of each block of the pair loop (kPairBlock pairs) and of each chunk of the
-  // gather (kGatherChunk particles) at its last evaluation, in rough instruction units
-  // (CpuBackend.cpp), and the ranges of blocks and chunks each thread takes this step.
-  std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_;
-  std::vector<long> pairRanges_, gatherRanges_;
+  // The work of each block of the pair loop (kPairBlock pairs; rough instruction units)
+  // and of each chunk of the gather (kGatherChunk particles) and of the bond loop
+  // (kBondChunk bonds; ns) at its last evaluation (CpuBackend.cpp), and the ranges of
+  // blocks and chunks each thread takes this step.
+  std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_, bondChunkCost_;
+  std::vector<long> pairRanges_, gatherRanges_, bondRanges_;
   // run() did the next step's kick and drift in the last gather (and whether that made the
   // neighbour list stale): the step starts at the wall control.
   bool drifted_ = false;
