@@ -288,7 +288,7 @@ PackReport buildPack(Model& model, const PackParameters& params)
   // neighbours of a grain lie anywhere in memory, and on two threads half of every
   // grain's contacts and bonds are computed by the other core: the pack is handed on in
   // space-filling order instead, its ids numbered in that order (nothing refers to them
-  // yet). Measured on a cemented 5,000-grain specimen: 1.2 x faster on one thread, 1.7 x
+  // yet). Measured on a cemented 5,000-grain specimen: 1.15 x faster on one thread, 1.4 x
   // on two (Documentation/Benchmarks-Solver.md, "Grains stored in space order").
   permuteParticles(model.particles, spatialOrder(model));
   for (std::size_t s = 0; s < model.particles.size(); ++s) {
