@@ -84,7 +84,33 @@ double restitutionForDamping(ContactLaw law, double c)
 }
 
 namespace {
-double solveDampingForRestitution(ContactLaw law, double e);
+/// The damping coefficient whose collision rebounds with restitution e (0 < e < 1).
+double solveDampingForRestitution(ContactLaw law, double e)
+{
+  // e(c) decreases monotonically from 1 at c = 0: bisect in log(c).
+  double lo = 1.0e-8;
+  double hi = 1.0;
+  while (restitutionForDamping(law, hi) > e) {
+    lo = hi;
+    hi *= 4.0;
+    if (hi > 1.0e4) {
+      throw InputError("Restitution = " + formatValue(e) +
+                       " is below what the contact law can deliver: use a larger value.");
+    }
+  }
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double mid = std::sqrt(lo * hi);
+    if (restitutionForDamping(law, mid) > e) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+    if (hi / lo < 1.0 + 1.0e-12) {
+      break;
+    }
+  }
+  return std::sqrt(lo * hi);
+}
 
 /// The last few (law, restitution) -> damping coefficients solved in this process: each
 /// solve integrates about 60 collisions (about 20 ms), and every Simulation asks for it.
@@ -132,34 +158,6 @@ double dampingForRestitution(ContactLaw law, double e)
   return damping;
 }
 
-namespace {
-double solveDampingForRestitution(ContactLaw law, double e)
-{
-  // e(c) decreases monotonically from 1 at c = 0: bisect in log(c).
-  double lo = 1.0e-8;
-  double hi = 1.0;
-  while (restitutionForDamping(law, hi) > e) {
-    lo = hi;
-    hi *= 4.0;
-    if (hi > 1.0e4) {
-      throw InputError("Restitution = " + formatValue(e) +
-                       " is below what the contact law can deliver: use a larger value.");
-    }
-  }
-  for (int iteration = 0; iteration < 60; ++iteration) {
-    const double mid = std::sqrt(lo * hi);
-    if (restitutionForDamping(law, mid) > e) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-    if (hi / lo < 1.0 + 1.0e-12) {
-      break;
-    }
-  }
-  return std::sqrt(lo * hi);
-}
-} // namespace
 
 ContactModel makeContactModel(const Material& material, ContactLaw law)
 {

@@ -205,6 +205,12 @@ void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vect
   }
 }
 
+void WorkSplit::split(long count, long chunk, std::uint32_t unmeasured, int parts)
+{
+  cost.resize(static_cast<std::size_t>((count + chunk - 1) / chunk), static_cast<std::uint32_t>(chunk) * unmeasured);
+  balancedRanges(cost, parts, ranges);
+}
+
 #if ROCKDEM_AVX2_KERNEL
 bool touchingPairsAvx2Enabled()
 {
@@ -698,16 +704,14 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     }
     pairLive[k] = 0;
   };
-  const long blocks = (pairs + kPairBlock - 1) / kPairBlock;
   // Each thread takes one contiguous range of blocks, of about equal work as the blocks'
   // work at the last step weighs it (a block new since a rebuild counts its pairs as not
   // touching): equal shares of the pairs gave the thread holding the contact-rich part of
-  // a pack most of the work (balancedRanges).
+  // a pack most of the work (WorkSplit).
   const int parts = im.parallel ? im.threads : 1;
-  pairBlockCost_.resize(static_cast<std::size_t>(blocks), kPairBlock * kPairCost);
-  balancedRanges(pairBlockCost_, parts, pairRanges_);
-  std::uint32_t* const blockCost = pairBlockCost_.data();
-  const long* const pairRanges = pairRanges_.data();
+  pairSplit_.split(pairs, kPairBlock, kPairCost, parts);
+  std::uint32_t* const blockCost = pairSplit_.cost.data();
+  const long* const pairRanges = pairSplit_.ranges.data();
   // The loops capture by value (the arrays' addresses, the constants) and the two large
   // objects they use by reference (WorkerTeam::run).
   team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
@@ -870,11 +874,9 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const std::uint8_t intact = static_cast<std::uint8_t>(BondFailure::Intact);
   // Each thread takes one contiguous range of chunks of about equal work, as the pair loop
   // takes its blocks (and, with driftNext, moves the particles it gathered).
-  const long chunks = (count + kGatherChunk - 1) / kGatherChunk;
-  gatherChunkCost_.resize(static_cast<std::size_t>(chunks), kGatherChunk * kUnmeasuredParticleCost);
-  balancedRanges(gatherChunkCost_, parts, gatherRanges_);
-  std::uint32_t* const chunkCost = gatherChunkCost_.data();
-  const long* const gatherRanges = gatherRanges_.data();
+  gatherSplit_.split(count, kGatherChunk, kUnmeasuredParticleCost, parts);
+  std::uint32_t* const chunkCost = gatherSplit_.cost.data();
+  const long* const gatherRanges = gatherSplit_.ranges.data();
   // The particle arrays the gather writes, through raw pointers (as in the pair loop).
   Vec3* const movePosition = p.position.data();
   Vec3* const moveVelocity = p.velocity.data();
@@ -1064,11 +1066,9 @@ void CpuBackend::computeBondForces(bool incrementState)
   }
   const int parts = im.parallel ? im.threads : 1;
   // Each thread takes one contiguous range of chunks of about equal time at the last step.
-  const long chunks = (count + kBondChunk - 1) / kBondChunk;
-  bondChunkCost_.resize(static_cast<std::size_t>(chunks), kBondChunk * kUnmeasuredBondCost);
-  balancedRanges(bondChunkCost_, parts, bondRanges_);
-  std::uint32_t* const chunkCost = bondChunkCost_.data();
-  const long* const bondRanges = bondRanges_.data();
+  bondSplit_.split(count, kBondChunk, kUnmeasuredBondCost, parts);
+  std::uint32_t* const chunkCost = bondSplit_.cost.data();
+  const long* const bondRanges = bondSplit_.ranges.data();
   team_.run(parts, [=, &im, &p, &b](int part) __attribute__((flatten)) {
   // tan(friction angle) of the last bond whose shear failure this rank tested (NaN: none).
   double lastAngle = std::numeric_limits<double>::quiet_NaN();

@@ -13,8 +13,8 @@
 // particle arrays in place. SI units throughout.
 //
 // Threads: the loops of a step run on a WorkerTeam (threads kept between loops, waiting
-// by a short spin, then asleep). The pair loop and the gather give each thread one range of equal work, as the
-// last step counted it (balancedRanges below), and within one run() the gather also does
+// by a short spin, then asleep). The pair loop, the bond loop and the gather give each thread one range of
+// equal work, as the last step counted or timed it (WorkSplit below), and within one run() the gather also does
 // the next step's half kick and drift of the particles it has just gathered (the last step
 // of a run does not, so the model holds whole steps between runs). Neither changes a bit.
 #pragma once
@@ -38,6 +38,16 @@ namespace dem {
 /// most of the work while the others wait (which thread computes a result never changes a
 /// bit of it).
 void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds);
+
+/// One loop's split among the threads: the cost of each chunk of its items at the chunk's
+/// last evaluation (counted or timed, CpuBackend.cpp) and each thread's range of chunks.
+struct WorkSplit {
+  std::vector<std::uint32_t> cost;
+  std::vector<long> ranges; // thread p takes the chunks [ranges[p], ranges[p + 1])
+  /// Sizes `cost` for `count` items in chunks of `chunk` (a chunk not evaluated yet costs
+  /// chunk x `unmeasured`) and splits it into `parts` ranges (balancedRanges).
+  void split(long count, long chunk, std::uint32_t unmeasured, int parts);
+};
 
 class CpuBackend final : public Backend {
 public:
@@ -73,12 +83,10 @@ private:
   // backend is made); the scalar loop otherwise. The same bits either way.
   bool simd_ = false;
   ContactState state_;
-  // The work of each block of the pair loop (kPairBlock pairs; rough instruction units)
-  // and of each chunk of the gather (kGatherChunk particles) and of the bond loop
-  // (kBondChunk bonds; ns) at its last evaluation (CpuBackend.cpp), and the ranges of
-  // blocks and chunks each thread takes this step.
-  std::vector<std::uint32_t> pairBlockCost_, gatherChunkCost_, bondChunkCost_;
-  std::vector<long> pairRanges_, gatherRanges_, bondRanges_;
+  // How the pair loop (blocks of kPairBlock pairs, counted in rough instruction units),
+  // the gather (chunks of kGatherChunk particles, timed) and the bond loop (chunks of
+  // kBondChunk bonds, timed) are split among the threads this step (CpuBackend.cpp).
+  WorkSplit pairSplit_, gatherSplit_, bondSplit_;
   // run() did the next step's kick and drift in the last gather (and whether that made the
   // neighbour list stale): the step starts at the wall control.
   bool drifted_ = false;
