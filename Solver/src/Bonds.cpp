@@ -1,13 +1,10 @@
 #include "dem/Bonds.h"
-
+#include "dem/ContactLaws.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace dem {
-namespace {
-constexpr double Pi = 3.14159265358979323846;
-}
 
 void Bonds::clear()
 {
@@ -96,41 +93,29 @@ BondCounts countBonds(const Bonds& bonds)
 
 BondSection bondSection(double bondRadius, bool section2D, double slab)
 {
-  const double R = bondRadius;
-  if (section2D) {
-    // Rectangle 2R x t through the slab: A = 2 R t, I = 2/3 t R^3, no twisting.
-    return { 2.0 * R * slab, 2.0 / 3.0 * slab * R * R * R, 0.0 };
-  }
-  // Circle: A = pi R^2, I = pi R^4 / 4, J = pi R^4 / 2.
-  const double R2 = R * R;
-  return { Pi * R2, 0.25 * Pi * R2 * R2, 0.5 * Pi * R2 * R2 };
+  return bondSectionLanes(bondRadius, section2D, slab); // dem/BondLawLanes.h
 }
 
 BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
                           const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment,
                           double momentContribution)
 {
-  BondStresses out;
-  const double beta = momentContribution;
-  out.sigmaMax = normalForce / s.area + beta * bendingMoment.norm() * bondRadius / s.inertia;
-  out.tauMax = shearForce.norm() / s.area +
-    (s.polar > 0.0 ? beta * std::abs(twistingMoment) * bondRadius / s.polar : 0.0);
-  out.compressive = -normalForce / s.area;
-  return out;
+  return bondStressesLanes<Vec3>(s, bondRadius, normalForce, shearForce, twistingMoment, bendingMoment,
+                                 momentContribution);
 }
 
 namespace {
 // Mohr-Coulomb: the shear strength grows with the compressive normal stress.
 bool failsInShear(const BondStresses& stresses, double cohesion, double tanFriction)
 {
-  return stresses.tauMax >= cohesion + stresses.compressive * tanFriction;
+  return failsInShearLanes(stresses, cohesion, tanFriction);
 }
 
 // The brittle law: tension first, then Mohr-Coulomb shear.
 BondFailure brittleFailure(const BondStresses& stresses, double tensileStrength, double cohesion,
                            double tanFriction)
 {
-  if (stresses.sigmaMax >= tensileStrength) {
+  if (failsInTensionLanes(stresses, tensileStrength)) {
     return BondFailure::Tension;
   }
   return failsInShear(stresses, cohesion, tanFriction) ? BondFailure::Shear : BondFailure::Intact;

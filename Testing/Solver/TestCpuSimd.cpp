@@ -1,11 +1,17 @@
-// The CPU backend's AVX2 touching-pair kernel (Solver/src/backends/cpu/TouchingPairsAvx2.cpp)
-// gives the bits of its scalar pair loop: on the law's edge cases pair by pair, and over
-// whole runs with the scalar loop forced by ROCKDEM_CPU_SIMD=0, and its scan lists the pairs the
-// scalar test lists. Skipped (and says so) on a
-// processor or build without the kernel.
+// The CPU backend's AVX2 kernels give the bits of its scalar loops. The touching-pair kernel
+// (Solver/src/backends/cpu/TouchingPairsAvx2.cpp): on the law's edge cases pair by pair, over
+// whole runs with the scalar loop forced by ROCKDEM_CPU_SIMD=0, and its scan lists the pairs
+// the scalar test lists. The bond kernel (IntactBondsAvx2.cpp): bond by bond in every state a
+// bond can be in, and over whole cemented runs that break bonds. Skipped (and says so) on a
+// processor or build without the kernels.
+#include "StateFixtures.h"
+#include "backends/cpu/IntactBond.h"
 #include "backends/cpu/TouchingPair.h"
 
+#include "dem/BondLaw.h"
+#include "dem/Cement.h"
 #include "dem/ContactLaws.h"
+#include "dem/LoadTest.h"
 #include "dem/Model.h"
 #include "dem/Simulation.h"
 
@@ -354,4 +360,254 @@ TEST(CpuSimd, ScanListsWhatTheScalarTestLists)
   // Both lists were exercised.
   EXPECT_GT(touching, 1000);
   EXPECT_GT(ended, 500);
+}
+
+// ---------------------------------------------------------------------------------------
+// The AVX2 bond kernel (IntactBondsAvx2.cpp).
+
+namespace {
+
+/// The bonds of the bond-by-bond test, as the kernel's plain arrays.
+struct BondCase {
+  std::vector<double> position, velocity, spin, radius;
+  std::vector<std::uint32_t> bondI, bondJ;
+  std::vector<std::uint8_t> failure;
+  std::vector<double> bondRadius, kn, ks, tensile, cohesion, friction, beta, softening, damage;
+  std::vector<double> normalForce, shearForce, twisting, bending;
+  std::vector<double> force, torqueI, torqueJ;
+  IntactBondArrays arrays(bool planar)
+  {
+    return { position.data(), velocity.data(), spin.data(), radius.data(), bondI.data(), bondJ.data(),
+             failure.data(), bondRadius.data(), kn.data(), ks.data(), tensile.data(), cohesion.data(),
+             friction.data(), beta.data(), softening.data(), damage.data(), normalForce.data(),
+             shearForce.data(), twisting.data(), bending.data(), force.data(), torqueI.data(),
+             torqueJ.data(), planar, 0.002, 2e-7 };
+  }
+};
+
+Vec3 row(const std::vector<double>& a, std::size_t k) { return Vec3(a[3 * k], a[3 * k + 1], a[3 * k + 2]); }
+
+/// One bond's step by the scalar loop's functions (Eigen vectors): its new state, its
+/// loads and whether it breaks (the brittle law).
+struct ScalarBond {
+  double normalForce, twisting;
+  Vec3 shearForce, bending;
+  BondLoads<Vec3> loads;
+  BondStresses stresses;
+  bool breaks;
+};
+
+ScalarBond scalarBond(const BondCase& c, std::size_t k, bool planar)
+{
+  const std::uint32_t i = c.bondI[k], j = c.bondJ[k];
+  Vec3 branch = row(c.position, j) - row(c.position, i);
+  if (planar) {
+    branch.z() = 0.0; // dem::minimumImage of a 2D section
+  }
+  const BondAxis<Vec3> axis = bondAxis(branch, c.radius[i], c.radius[j]);
+  const BondSection section = bondSection(c.bondRadius[k], planar, 0.002);
+  ScalarBond s{ c.normalForce[k], c.twisting[k], row(c.shearForce, k), row(c.bending, k), {}, {}, false };
+  advanceBond(axis, section, c.kn[k], c.ks[k], planar, row(c.velocity, i), row(c.velocity, j), row(c.spin, i),
+              row(c.spin, j), 2e-7, s.normalForce, s.shearForce, s.twisting, s.bending);
+  s.stresses = bondStresses(section, c.bondRadius[k], s.normalForce, s.shearForce, s.twisting, s.bending, c.beta[k]);
+  s.breaks = bondFailure(s.stresses, c.tensile[k], c.cohesion[k], c.friction[k]) != BondFailure::Intact;
+  s.loads = bondLoads(axis, s.normalForce, s.shearForce, s.twisting, s.bending);
+  return s;
+}
+
+/// 60 grains and 203 bonds between them in every state the bond loop meets: intact and
+/// brittle, broken, softening, damaged without softening, two friction angles, moment
+/// contributions 0.5 and 1, with random forces, moments, velocities and spins.
+BondCase bondCase()
+{
+  std::mt19937_64 random(20261208);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  BondCase c;
+  const std::size_t particles = 60, bonds = 203;
+  for (std::size_t i = 0; i < particles; ++i) {
+    c.radius.push_back(1e-3 * (1.0 + 0.3 * unit(random)));
+    for (int d = 0; d < 3; ++d) {
+      c.position.push_back(0.01 * unit(random));
+      c.velocity.push_back(0.05 * unit(random));
+      c.spin.push_back(20.0 * unit(random));
+    }
+  }
+  for (std::size_t k = 0; k < bonds; ++k) {
+    const std::uint32_t i = static_cast<std::uint32_t>(k % particles);
+    std::uint32_t j = static_cast<std::uint32_t>((k * 7 + 3) % particles);
+    j = j == i ? (i + 1) % particles : j;
+    c.bondI.push_back(i);
+    c.bondJ.push_back(j);
+    c.failure.push_back(k % 9 == 4 ? static_cast<std::uint8_t>(BondFailure::Tension) : 0);
+    c.bondRadius.push_back(0.8 * std::min(c.radius[i], c.radius[j]));
+    c.kn.push_back(2e12 * (1.0 + 0.2 * unit(random)));
+    c.ks.push_back(0.4 * c.kn.back());
+    c.friction.push_back(k % 5 == 0 ? 0.6 : 0.5);
+    c.beta.push_back(k % 3 == 0 ? 0.5 : 1.0);
+    c.softening.push_back(k % 13 == 6 ? 2.0 : 0.0);
+    c.damage.push_back(k % 19 == 5 ? 0.3 : 0.0);
+    c.normalForce.push_back(k % 4 == 0 ? 0.0 : 5.0 * unit(random));
+    c.twisting.push_back(1e-3 * unit(random));
+    for (int d = 0; d < 3; ++d) {
+      c.shearForce.push_back(k % 4 == 0 ? 0.0 : 2.0 * unit(random));
+      c.bending.push_back(k % 6 == 1 ? 0.0 : 1e-3 * unit(random));
+    }
+  }
+  c.tensile.assign(bonds, 1e30);
+  c.cohesion.assign(bonds, 1e30);
+  c.force.assign(3 * bonds, -7.0);
+  c.torqueI.assign(3 * bonds, -7.0);
+  c.torqueJ.assign(3 * bonds, -7.0);
+  return c;
+}
+
+} // namespace
+
+// Bond by bond: the kernel on ranges of 1 to 40 bonds at several offsets, 3D and 2D,
+// against the scalar loop's functions: every bond it steps has the scalar bits (state and
+// loads); it hands back exactly the intact bonds that soften or are damaged and every bond
+// of a group of four in which one breaks (by tension or by shear, at the strength exactly),
+// leaving their state untouched; it touches no broken bond and nothing outside the range,
+// and writes nothing in `rest` beyond its kBondScanSlack spare entries.
+TEST(CpuSimd, BondKernelGivesTheScalarBitsBondByBond)
+{
+  if (!kernelAvailable()) {
+    GTEST_SKIP() << "no AVX2 kernel on this processor or build: the scalar loop runs alone";
+  }
+  for (const bool planar : { false, true }) {
+    SCOPED_TRACE(planar ? "2D section" : "3D");
+    BondCase start = bondCase();
+    const std::size_t bonds = start.bondI.size();
+    // Strengths at the stresses the step reaches: every 23rd bond breaks in tension at its
+    // strength exactly, every 29th in shear at its strength exactly, the others hold.
+    for (std::size_t k = 0; k < bonds; ++k) {
+      const ScalarBond s = scalarBond(start, k, planar);
+      if (k % 23 == 3) {
+        start.tensile[k] = s.stresses.sigmaMax;
+      } else if (k % 29 == 2) {
+        start.tensile[k] = std::abs(s.stresses.sigmaMax) * 2.0 + 1.0;
+        start.cohesion[k] = s.stresses.tauMax - s.stresses.compressive * std::tan(start.friction[k]);
+      } else {
+        start.tensile[k] = std::abs(s.stresses.sigmaMax) * 2.0 + 1.0;
+      }
+    }
+    std::size_t stepped = 0, handedBack = 0, broke = 0;
+    for (const std::size_t first : { std::size_t{ 0 }, std::size_t{ 1 }, std::size_t{ 50 }, std::size_t{ 163 } }) {
+      for (std::size_t length = 1; length <= 40 && first + length <= bonds; ++length) {
+        BondCase c = start;
+        const std::uint32_t poison = 0xdeadbeef;
+        std::vector<std::uint32_t> rest(length + kBondScanSlack + 4, poison);
+        const std::size_t restCount = intactBondsAvx2(c.arrays(planar), first, first + length, rest.data());
+        // What the kernel should do: the brittle undamaged intact bonds in groups of four.
+        std::vector<std::uint32_t> listed, expectRest;
+        for (std::size_t k = first; k < first + length; ++k) {
+          if (start.failure[k] != 0) {
+            continue;
+          }
+          if (start.softening[k] > 0.0 || start.damage[k] > 0.0) {
+            expectRest.push_back(static_cast<std::uint32_t>(k));
+          } else {
+            listed.push_back(static_cast<std::uint32_t>(k));
+          }
+        }
+        std::vector<bool> storedHere(bonds, false);
+        for (std::size_t g = 0; g < listed.size(); g += 4) {
+          const std::size_t end = std::min(listed.size(), g + 4);
+          bool anyBreaks = false;
+          for (std::size_t l = g; l < end; ++l) {
+            anyBreaks = anyBreaks || scalarBond(start, listed[l], planar).breaks;
+          }
+          for (std::size_t l = g; l < end; ++l) {
+            (anyBreaks ? expectRest.push_back(listed[l]) : static_cast<void>(storedHere[listed[l]] = true));
+          }
+          broke += anyBreaks ? 1 : 0;
+        }
+        std::vector<std::uint32_t> gotRest(rest.begin(), rest.begin() + static_cast<long>(restCount));
+        std::sort(gotRest.begin(), gotRest.end());
+        std::sort(expectRest.begin(), expectRest.end());
+        ASSERT_EQ(gotRest, expectRest) << "bonds " << first << " + " << length;
+        for (std::size_t e = length + kBondScanSlack; e < rest.size(); ++e) {
+          ASSERT_EQ(rest[e], poison) << "written beyond the slack";
+        }
+        for (std::size_t k = 0; k < bonds; ++k) {
+          SCOPED_TRACE("bond " + std::to_string(k));
+          if (storedHere[k]) {
+            const ScalarBond s = scalarBond(start, k, planar);
+            ASSERT_EQ(std::memcmp(&c.normalForce[k], &s.normalForce, sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.twisting[k], &s.twisting, sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.shearForce[3 * k], s.shearForce.data(), 3 * sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.bending[3 * k], s.bending.data(), 3 * sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.force[3 * k], s.loads.force.data(), 3 * sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.torqueI[3 * k], s.loads.torqueI.data(), 3 * sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.torqueJ[3 * k], s.loads.torqueJ.data(), 3 * sizeof(double)), 0);
+            ++stepped;
+          } else { // untouched
+            ASSERT_EQ(std::memcmp(&c.normalForce[k], &start.normalForce[k], sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.shearForce[3 * k], &start.shearForce[3 * k], 3 * sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.twisting[k], &start.twisting[k], sizeof(double)), 0);
+            ASSERT_EQ(std::memcmp(&c.bending[3 * k], &start.bending[3 * k], 3 * sizeof(double)), 0);
+            ASSERT_EQ(c.force[3 * k], -7.0);
+            ASSERT_EQ(c.torqueI[3 * k + 2], -7.0);
+            ASSERT_EQ(c.torqueJ[3 * k + 1], -7.0);
+          }
+        }
+        handedBack += restCount;
+      }
+    }
+    // Every path was taken.
+    EXPECT_GT(stepped, 1500u);
+    EXPECT_GT(handedBack, 1000u);
+    EXPECT_GT(broke, 150u);
+  }
+}
+
+// Whole runs of cemented specimens under unconfined compression, with the kernel and with
+// the scalar loop forced (ROCKDEM_CPU_SIMD=0), on one thread and on two: the same bits
+// (particles, contacts, bonds with their failures and damage) after 1,200 steps that break
+// bonds; 3D with tension softening on every third bond, and a 2D section.
+TEST(CpuSimd, BondedRunsGiveTheScalarLoopBits)
+{
+  if (!kernelAvailable()) {
+    GTEST_SKIP() << "no AVX2 kernel on this processor or build: the scalar loop runs alone";
+  }
+  for (const bool planar : { false, true }) {
+    SCOPED_TRACE(planar ? "2D section" : "3D");
+    Model start = planar ? dem::testing::placedPack(Vec3(0.055, 0.055, 0.002), true, 450, 0.0008, 0.0012, 3)
+                         : dem::testing::specimen(600, 0.021, 0.0008, 0.0012, 2);
+    if (planar) {
+      growElements(start);
+    }
+    cement(start, dem::testing::testCement());
+    ASSERT_GT(start.bonds.size(), 300u);
+    for (std::size_t k = 0; k < start.bonds.size(); ++k) {
+      start.bonds.softening[k] = !planar && k % 3 == 2 ? 2.0 : 0.0;
+    }
+    LoadTestSettings press;
+    press.mode = TestMode::Compression;
+    press.strainRate = 50.0;
+    press.maxStrain = 0.2;
+    press.sampleInterval = 50;
+    press.axis = planar ? 1 : 2; // a section is loaded in its plane
+    startLoadTest(start, press);
+    Model scalar = start;
+    scalar.solver.threads = 1;
+    {
+      SimdSetting off("0");
+      Simulation s(scalar);
+      s.advance(1200);
+    }
+    EXPECT_GT(countBonds(scalar.bonds).broken, 10u) << "the test breaks bonds";
+    if (!planar) {
+      EXPECT_GT(statetest::softeningBonds(scalar.bonds), 0u) << "bonds are softening at the end";
+    }
+    for (const int threads : { 1, 2 }) {
+      Model vector = start;
+      vector.solver.threads = threads;
+      vector.solver.parallelThreshold = 0;
+      SimdSetting on(nullptr);
+      Simulation s(vector);
+      s.advance(1200);
+      EXPECT_EQ(statetest::firstDifference(scalar, vector), "") << "threads " << threads;
+    }
+  }
 }

@@ -21,15 +21,8 @@ inline void incrementBond(const BondSection& section, double kn, double ks, bool
                           const Vec3& relativeSpin, double dt, double& normalForce,
                           Vec3& shearForce, double& twistingMoment, Vec3& bendingMoment)
 {
-  // dFn = kn A d(separation): positive (tension) when B moves away from A.
-  normalForce -= kn * section.area * relativeVelocity.dot(normal) * dt;
-  // dFs = -ks A (tangential displacement of A relative to B), in the rotated plane.
-  shearForce = rotateIntoPlane(shearForce, normal) - ks * section.area * inPlane(relativeVelocity, normal) * dt;
-  // dMt = -ks J d(theta twist) (3D); dMb = -kn I d(theta bend).
-  if (!planar) {
-    twistingMoment -= ks * section.polar * relativeSpin.dot(normal) * dt;
-  }
-  bendingMoment = rotateIntoPlane(bendingMoment, normal) - kn * section.inertia * inPlane(relativeSpin, normal) * dt;
+  incrementBondLanes<Vec3>(section, kn, ks, planar, normal, relativeVelocity, relativeSpin, dt, normalForce,
+                           shearForce, twistingMoment, bendingMoment); // written once, in dem/BondLawLanes.h
 }
 
 /// Elastic energy (J) an intact bond's springs hold (PHYSICS.md section 3): F = k A u for the

@@ -13,6 +13,8 @@
 // parallel and their stiffnesses add; in tension only the bond acts.
 #pragma once
 
+#include "dem/BondLawLanes.h"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -92,23 +94,16 @@ struct BondCounts {
 BondCounts countBonds(const Bonds& bonds);
 
 /// Section properties of a bond (PHYSICS.md s.3): 3D A = pi Rb^2, I = pi Rb^4 / 4,
-/// J = pi Rb^4 / 2; 2D (slab t) A = 2 Rb t, I = 2/3 t Rb^3, J = 0 (no twisting).
-struct BondSection {
-  double area;      ///< m^2
-  double inertia;   ///< m^4, bending
-  double polar;     ///< m^4, twisting (0 in 2D)
-};
+/// J = pi Rb^4 / 2; 2D (slab t) A = 2 Rb t, I = 2/3 t Rb^3, J = 0 (no twisting). Fields
+/// area (m^2), inertia (m^4, bending), polar (m^4, twisting); dem/BondLawLanes.h.
+using BondSection = BondSectionLanes<double>;
 BondSection bondSection(double bondRadius, bool section2D, double slab);
 
 /// Peripheral stresses of a bond state (PHYSICS.md s.3), Pa:
 /// sigma_max = Fn/A + beta |Mb| Rb / I (tension positive), tau_max = |Fs|/A + beta |Mt| Rb / J
 /// (3D), with beta the moment contribution factor (1: the full moments, Potyondy & Cundall
 /// 2004; 0: the moments are carried but never break the bond).
-struct BondStresses {
-  double sigmaMax;
-  double tauMax;
-  double compressive; ///< sigma = -Fn / A (compression positive)
-};
+using BondStresses = BondStressesLanes<double>; // sigmaMax, tauMax, compressive (Pa)
 BondStresses bondStresses(const BondSection& s, double bondRadius, double normalForce,
                           const Vec3& shearForce, double twistingMoment, const Vec3& bendingMoment,
                           double momentContribution = 1.0);

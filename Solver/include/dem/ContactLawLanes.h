@@ -26,6 +26,7 @@ template <> struct LaneOps<double> {
   using Mask = bool;
   static double broadcast(double x) { return x; }
   static double sqrt(double x) { return std::sqrt(x); }
+  static double abs(double x) { return std::abs(x); }
   static double select(bool m, double a, double b) { return m ? a : b; }
   static bool both(bool a, bool b) { return a && b; }
   static bool any(bool m) { return m; }

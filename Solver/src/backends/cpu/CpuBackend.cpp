@@ -7,6 +7,7 @@
 #include "dem/Membrane.h"
 #include "dem/SizeClassGrids.h"
 #include "dem/WallControl.h"
+#include "backends/cpu/IntactBond.h"
 #include "backends/cpu/TouchingPair.h"
 
 #include <algorithm>
@@ -171,6 +172,15 @@ constexpr std::uint32_t kUnmeasuredParticleCost = 50;
 // unequal work where the bonds of one half of a specimen have broken (a broken bond costs
 // a byte's test). Before a chunk has run: 50 ns per bond.
 constexpr std::uint32_t kUnmeasuredBondCost = 50;
+
+/// An array of Vec3 (or of constants of three doubles) as plain doubles, for the AVX2
+/// kernels, which include no Eigen.
+template <class T> auto doubles(T* array)
+{
+  using Double = std::conditional_t<std::is_const_v<T>, const double, double>;
+  static_assert(sizeof(std::remove_const_t<T>) % sizeof(double) == 0, "rows of doubles");
+  return reinterpret_cast<Double*>(array);
+}
 
 /// The time since `start` (ns) averaged with the last cost, at least 1.
 std::uint32_t measuredCost(std::chrono::steady_clock::time_point start, std::uint32_t last)
@@ -677,11 +687,6 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   [[maybe_unused]] const bool simd = simd_ && !rolling && separationOf.plain();
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(ContactConstants) == 3 * sizeof(double),
                 "the AVX2 kernel reads these arrays as plain doubles");
-  auto doubles = [](auto* array) {
-    using Double = std::conditional_t<std::is_const_v<std::remove_pointer_t<decltype(array)>>,
-                                      const double, double>;
-    return reinterpret_cast<Double*>(array);
-  };
   [[maybe_unused]] const TouchingPairArrays arrays{ doubles(position), doubles(velocity), doubles(spin),
     doubles(lastForce), radius, inverseMass, pairI, pairJ, doubles(pairConstants),
     doubles(pairSpring), doubles(pairForce), doubles(pairTorqueI), doubles(pairTorqueJ),
@@ -1069,34 +1074,33 @@ void CpuBackend::computeBondForces(bool incrementState)
   bondSplit_.split(count, kBondChunk, kUnmeasuredBondCost, parts);
   std::uint32_t* const chunkCost = bondSplit_.cost.data();
   const long* const bondRanges = bondSplit_.ranges.data();
+  // Four bonds at a time with AVX2 on a real step without periodic axes (IntactBond.h);
+  // the scalar loop steps the rest: softening or damaged bonds, groups in which one breaks.
+  [[maybe_unused]] const bool simd =
+    simd_ && incrementState && !d.periodic[0] && !d.periodic[1] && !d.periodic[2];
+  [[maybe_unused]] const IntactBondArrays arrays{ doubles(p.position.data()), doubles(p.velocity.data()),
+    doubles(p.angularVelocity.data()), p.radius.data(), im.bondI.data(), im.bondJ.data(), b.failure.data(),
+    b.radius.data(), b.normalStiffness.data(), b.shearStiffness.data(), b.tensileStrength.data(),
+    b.cohesion.data(), b.frictionAngle.data(), b.momentContribution.data(), b.softening.data(), b.damage.data(),
+    b.normalForce.data(), doubles(b.shearForce.data()), b.twistingMoment.data(), doubles(b.bendingMoment.data()),
+    doubles(im.bondForce.data()), doubles(im.bondTorqueI.data()), doubles(im.bondTorqueJ.data()), planar, slab, dt };
   team_.run(parts, [=, &im, &p, &b](int part) __attribute__((flatten)) {
   // tan(friction angle) of the last bond whose shear failure this rank tested (NaN: none).
   double lastAngle = std::numeric_limits<double>::quiet_NaN();
   double lastTan = 0.0;
-  for (long chunk = bondRanges[part]; chunk < bondRanges[part + 1]; ++chunk) {
-  const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
-  const long chunkEnd = std::min(count, (chunk + 1) * kBondChunk);
-  for (long lk = chunk * kBondChunk; lk < chunkEnd; ++lk) {
-    const std::size_t k = static_cast<std::size_t>(lk);
+  // One bond's step (the AVX2 kernel's, one lane at a time): state, failure, loads.
+  auto stepBond = [&](std::size_t k) __attribute__((always_inline)) {
     if (b.broken(k)) {
-      continue;
+      return;
     }
     const std::uint32_t i = im.bondI[k];
     const std::uint32_t j = im.bondJ[k];
-    const Vec3 branch = separation(d, p.position[i], p.position[j]); // A to B
-    const double distance = branch.norm();
-    const Vec3 normal = branch / distance;
-    // The contact point divides the branch in the ratio of the radii.
-    const double armI = distance * p.radius[i] / (p.radius[i] + p.radius[j]);
-    const double armJ = distance - armI;
+    const BondAxis<Vec3> axis = bondAxis(separation(d, p.position[i], p.position[j]), p.radius[i], p.radius[j]);
     const BondSection section = bondSection(b.radius[k], planar, slab);
     if (incrementState) {
-      const Vec3 relativeVelocity = p.velocity[i] - p.velocity[j] +
-        p.angularVelocity[i].cross(armI * normal) + p.angularVelocity[j].cross(armJ * normal);
-      const Vec3 relativeSpin = p.angularVelocity[i] - p.angularVelocity[j];
-      incrementBond(section, b.normalStiffness[k], b.shearStiffness[k], planar, normal,
-                    relativeVelocity, relativeSpin, dt, b.normalForce[k], b.shearForce[k],
-                    b.twistingMoment[k], b.bendingMoment[k]);
+      advanceBond(axis, section, b.normalStiffness[k], b.shearStiffness[k], planar, p.velocity[i], p.velocity[j],
+                  p.angularVelocity[i], p.angularVelocity[j], dt, b.normalForce[k], b.shearForce[k],
+                  b.twistingMoment[k], b.bendingMoment[k]);
       const BondStresses stresses = bondStresses(section, b.radius[k], b.normalForce[k],
         b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k], b.momentContribution[k]);
       if (!(b.frictionAngle[k] == lastAngle)) { // most bonds of a rock share one angle
@@ -1112,25 +1116,44 @@ void CpuBackend::computeBondForces(bool incrementState)
             b.normalForce[k], b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
         }
         // Broken for good: record how, when, where and how it was oriented.
-        b.markBroken(k, failure, endTime, p.position[i] + armI * normal, normal);
+        b.markBroken(k, failure, endTime, p.position[i] + axis.armI * axis.normal, axis.normal);
         im.bondForce[k].setZero();
         im.bondTorqueI[k].setZero();
         im.bondTorqueJ[k].setZero();
-        continue;
+        return;
       }
     }
-    const Vec3 twist = b.twistingMoment[k] * normal;
-    im.bondForce[k] = b.normalForce[k] * normal + b.shearForce[k];
-    im.bondTorqueI[k] = armI * normal.cross(b.shearForce[k]) + twist + b.bendingMoment[k];
-    im.bondTorqueJ[k] = armJ * normal.cross(b.shearForce[k]) - twist - b.bendingMoment[k];
+    const BondLoads<Vec3> loads =
+      bondLoads(axis, b.normalForce[k], b.shearForce[k], b.twistingMoment[k], b.bendingMoment[k]);
+    im.bondForce[k] = loads.force;
+    im.bondTorqueI[k] = loads.torqueI;
+    im.bondTorqueJ[k] = loads.torqueJ;
     if (b.damage[k] > 0.0) { // tension softening: the bond applies (1 - D) of its elastic state
       const double share = b.intactShare(k);
       im.bondForce[k] *= share;
       im.bondTorqueI[k] *= share;
       im.bondTorqueJ[k] *= share;
     }
-  }
-  chunkCost[chunk] = measuredCost(chunkStart, chunkCost[chunk]);
+  };
+  for (long chunk = bondRanges[part]; chunk < bondRanges[part + 1]; ++chunk) {
+    const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
+    const long chunkEnd = std::min(count, (chunk + 1) * kBondChunk);
+#if ROCKDEM_AVX2_KERNEL
+    if (simd) {
+      std::uint32_t rest[kBondChunk + kBondScanSlack];
+      const std::size_t restCount = intactBondsAvx2(arrays, static_cast<std::size_t>(chunk * kBondChunk),
+                                                    static_cast<std::size_t>(chunkEnd), rest);
+      for (std::size_t r = 0; r < restCount; ++r) {
+        stepBond(rest[r]);
+      }
+      chunkCost[chunk] = measuredCost(chunkStart, chunkCost[chunk]);
+      continue;
+    }
+#endif
+    for (long k = chunk * kBondChunk; k < chunkEnd; ++k) {
+      stepBond(static_cast<std::size_t>(k));
+    }
+    chunkCost[chunk] = measuredCost(chunkStart, chunkCost[chunk]);
   }
   });
 }
