@@ -597,13 +597,17 @@ void Simulation::advance(std::int64_t steps)
   if (steps <= 0 || model_.particles.empty() || timestep_ <= 0.0) {
     return;
   }
-  // Last good state: restored if this call goes unstable.
-  exportContacts();
-  const Particles savedParticles = model_.particles;
-  const std::vector<Wall> savedWalls = model_.walls;
-  const ContactHistory savedContacts = model_.contacts;
-  const Bonds savedBonds = model_.bonds;
-  const LoadTestState savedTest = model_.test;
+  // Last good state: restored if this call goes unstable. The model's contacts are the
+  // backend's unless a step ran since the last export; the copies go into kept buffers
+  // (the same sizes from one call to the next: no allocation, no fresh pages to fault in).
+  if (!contactsExported_) {
+    exportContacts();
+  }
+  saved_.particles = model_.particles;
+  saved_.walls = model_.walls;
+  saved_.contacts = model_.contacts;
+  saved_.bonds = model_.bonds;
+  saved_.test = model_.test;
   const Clock savedClock = model_.clock;
   try {
     std::int64_t done = 0;
@@ -623,6 +627,7 @@ void Simulation::advance(std::int64_t steps)
         }
         chunk = std::min(chunk, next - since);
       }
+      contactsExported_ = false;
       backend_->run(chunk);
       done += chunk;
       sampleLoadTest(chunk);
@@ -637,11 +642,11 @@ void Simulation::advance(std::int64_t steps)
     }
     checkStability("at the end of the batch");
   } catch (const InstabilityError& e) {
-    model_.particles = savedParticles;
-    model_.walls = savedWalls;
-    model_.contacts = savedContacts;
-    model_.bonds = savedBonds;
-    model_.test = savedTest;
+    model_.particles = saved_.particles;
+    model_.walls = saved_.walls;
+    model_.contacts = saved_.contacts;
+    model_.bonds = saved_.bonds;
+    model_.test = saved_.test;
     model_.clock = savedClock;
     broken_ = true;
     std::ostringstream msg;
@@ -978,6 +983,7 @@ void Simulation::exportContacts()
       h.rollingSpring.push_back(e.roll);
     }
   }
+  contactsExported_ = true;
 }
 
 } // namespace dem

@@ -16,6 +16,14 @@
 
 #include <cmath>
 
+// A law that both loops of a backend run (the scalar one and the SIMD kernel) is inlined
+// into each (out of line, its input and result would travel through memory on every call).
+#if defined(__GNUC__)
+#define ROCKDEM_INLINE_LAW inline __attribute__((always_inline))
+#else
+#define ROCKDEM_INLINE_LAW inline
+#endif
+
 namespace dem {
 
 /// Lane operations of a lane type S. The double instance is here; a SIMD lane type defines

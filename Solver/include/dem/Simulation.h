@@ -174,6 +174,17 @@ private:
   std::vector<Vec3> lastMembranePosition_;    ///< m, at the last check (membrane and tension runs)
   std::vector<Vec3> lastMembraneForce_;       ///< N, the push of the membrane or tension platen on each particle at the last check
   bool broken_ = false;                 ///< an instability stopped the run
+  /// model.contacts holds the backend's contacts: exported, and no step run since.
+  bool contactsExported_ = false;
+  /// advance()'s last good state (restored if the call goes unstable), kept between calls
+  /// so that its copies reuse their buffers.
+  struct SavedState {
+    Particles particles;
+    std::vector<Wall> walls;
+    ContactHistory contacts;
+    Bonds bonds;
+    LoadTestState test;
+  } saved_;
 };
 
 } // namespace dem

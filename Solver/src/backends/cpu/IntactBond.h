@@ -6,7 +6,6 @@
 // dem/BondLawLanes.h. No Eigen here: the AVX2 translation unit includes this header. SI units.
 #pragma once
 
-#include "backends/cpu/TouchingPair.h" // ROCKDEM_INLINE_LAW
 #include "dem/BondLawLanes.h"
 
 #include <cstddef>

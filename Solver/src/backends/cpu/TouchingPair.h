@@ -11,14 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 
-// The law is inlined into both loops (out of line, its input and result would travel
-// through memory on every call).
-#if defined(__GNUC__)
-#define ROCKDEM_INLINE_LAW inline __attribute__((always_inline))
-#else
-#define ROCKDEM_INLINE_LAW inline
-#endif
-
 namespace dem {
 
 /// What the pair law reads of one pair (i < j), per lane; V is the vector type
