@@ -139,10 +139,26 @@ inline Vec3 withSignFlipped(const Vec3& v, bool flip)
 [[gnu::always_inline]] inline void addEntry(bool live, bool asJ, const Vec3* force, const Vec3* torqueI,
                                             const Vec3* torqueJ, Vec3& sumForce, Vec3& sumTorque)
 {
-  const Vec3* f = chooseRow(live, force, &kNegativeZero);
-  const Vec3* t = chooseRow(live, chooseRow(asJ, torqueJ, torqueI), &kNegativeZero);
-  sumForce += withSignFlipped(*f, live && asJ);
-  sumTorque += *t;
+  // The rows are read whether the entry acts or not, so that their loads need not wait for
+  // the load of `live` (two cache misses one after the other, on a large pack), and then
+  // replaced by -0.0 where it does not act.
+  const Vec3& f = *force;
+  const Vec3& t = *chooseRow(asJ, torqueJ, torqueI);
+  const std::uint64_t keep = std::uint64_t{ 0 } - static_cast<std::uint64_t>(live);
+  const std::uint64_t sign = static_cast<std::uint64_t>(asJ) << 63;
+  constexpr std::uint64_t negativeZero = std::uint64_t{ 1 } << 63;
+  for (int c = 0; c < 3; ++c) {
+    std::uint64_t fBits, tBits;
+    std::memcpy(&fBits, &f[c], sizeof fBits);
+    std::memcpy(&tBits, &t[c], sizeof tBits);
+    fBits = ((fBits ^ sign) & keep) | (negativeZero & ~keep);
+    tBits = (tBits & keep) | (negativeZero & ~keep);
+    double fc, tc;
+    std::memcpy(&fc, &fBits, sizeof fc);
+    std::memcpy(&tc, &tBits, sizeof tc);
+    sumForce[c] += fc;
+    sumTorque[c] += tc;
+  }
 }
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the

@@ -78,9 +78,10 @@ private:
   Model& model_;
   ContactModel contactModel_;
   double timestep_ = 0.0;
-  // The touching pairs run four at a time with AVX2 (TouchingPairsAvx2.cpp) where the
-  // processor has it and the environment variable ROCKDEM_CPU_SIMD is not 0 (read when the
-  // backend is made); the scalar loop otherwise. The same bits either way.
+  // The touching pairs and the intact bonds run four at a time with AVX2
+  // (TouchingPairsAvx2.cpp, IntactBondsAvx2.cpp) where the processor has it and the
+  // environment variable ROCKDEM_CPU_SIMD is not 0 (read when the backend is made); the
+  // scalar loops otherwise. The same bits either way.
   bool simd_ = false;
   ContactState state_;
   // How the pair loop (blocks of kPairBlock pairs, counted in rough instruction units),

@@ -110,8 +110,9 @@ struct TouchingPairArrays {
 /// root, so the rejection changes no bit.
 constexpr double kApart = 1.0 + 0x1p-50;
 
-/// True when this CPU runs the AVX2 kernel and ROCKDEM_CPU_SIMD is not 0 (the variable
-/// forces the scalar pair loop, for tests and comparisons). The processor is asked once per
+/// True when this CPU runs the AVX2 kernels (these pairs, and the bonds of IntactBond.h) and
+/// ROCKDEM_CPU_SIMD is not 0 (the variable forces the scalar pair and bond loops, for tests
+/// and comparisons). The processor is asked once per
 /// process, the variable at every call (the CPU backend calls it when it is made).
 bool touchingPairsAvx2Enabled();
 
