@@ -101,4 +101,23 @@ inline constexpr LaneList kLanesOf[16] = {
   { { 2, 3, 0, 0 } }, { { 0, 2, 3, 0 } }, { { 1, 2, 3, 0 } }, { { 0, 1, 2, 3 } },
 };
 
+
+/// Appends k + l for each lane l set in `bits` (a 4-bit set), in increasing order, to
+/// list[count...] without a branch per lane: writes four entries and advances `count` by
+/// the number kept (the list needs four entries to spare).
+inline void appendLanes(std::uint32_t* list, std::size_t& count, std::size_t k, unsigned bits)
+{
+  const __m128i base = _mm_set1_epi32(static_cast<int>(k));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(list + count),
+                   _mm_add_epi32(base, _mm_load_si128(reinterpret_cast<const __m128i*>(kLanesOf[bits].lane))));
+  count += static_cast<std::size_t>(__builtin_popcount(bits));
+}
+
+/// The lanes (a 4-bit set) whose byte in `bytes` (lane l in byte l) is zero.
+inline unsigned zeroByteLanes(std::uint32_t bytes)
+{
+  return static_cast<unsigned>(_mm_movemask_epi8(
+           _mm_cmpeq_epi8(_mm_cvtsi32_si128(static_cast<int>(bytes)), _mm_setzero_si128()))) & 0xfu;
+}
+
 } // namespace dem

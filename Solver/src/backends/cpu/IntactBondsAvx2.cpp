@@ -71,21 +71,13 @@ std::size_t scanBonds(const IntactBondArrays& a, std::size_t first, std::size_t 
     std::memcpy(&failure4, a.failure + k, static_cast<std::size_t>(lanes));
     std::memcpy(softening, a.softening + k, sizeof(double) * static_cast<std::size_t>(lanes));
     std::memcpy(damage, a.damage + k, sizeof(double) * static_cast<std::size_t>(lanes));
-    const unsigned intactBits = static_cast<unsigned>(_mm_movemask_epi8(
-      _mm_cmpeq_epi8(_mm_cvtsi32_si128(static_cast<int>(failure4)), _mm_setzero_si128()))) & validBits;
+    const unsigned intactBits = zeroByteLanes(failure4) & validBits;
     // The scalar loop's tests: softening when the ratio is > 0, the share applied when damage > 0.
     const F64x4 zero = Ops::broadcast(0.0);
     const I64x4 special = ((F64x4)_mm256_load_pd(softening) > zero) | ((F64x4)_mm256_load_pd(damage) > zero);
     const unsigned specialBits = static_cast<unsigned>(_mm256_movemask_pd((__m256d)special));
-    const unsigned listBits = intactBits & ~specialBits;
-    const unsigned restBits = intactBits & specialBits;
-    const __m128i base = _mm_set1_epi32(static_cast<int>(k));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(list + listed),
-                     _mm_add_epi32(base, _mm_load_si128(reinterpret_cast<const __m128i*>(kLanesOf[listBits].lane))));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(rest + restCount),
-                     _mm_add_epi32(base, _mm_load_si128(reinterpret_cast<const __m128i*>(kLanesOf[restBits].lane))));
-    listed += static_cast<std::size_t>(__builtin_popcount(listBits));
-    restCount += static_cast<std::size_t>(__builtin_popcount(restBits));
+    appendLanes(list, listed, k, intactBits & ~specialBits);
+    appendLanes(rest, restCount, k, intactBits & specialBits);
   }
   return listed;
 }

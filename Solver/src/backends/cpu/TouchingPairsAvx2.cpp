@@ -65,16 +65,9 @@ std::size_t scanPairsAvx2(const TouchingPairArrays& a, std::size_t first, std::s
         live4 |= static_cast<std::uint32_t>(a.live[k + static_cast<std::size_t>(l)]) << (8 * l);
       }
     }
-    const unsigned deadBits = static_cast<unsigned>(
-      _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_cvtsi32_si128(static_cast<int>(live4)), _mm_setzero_si128())));
-    const unsigned endBits = apartBits & ~deadBits & validBits;
-    const __m128i base = _mm_set1_epi32(static_cast<int>(k));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(list + listed),
-                     _mm_add_epi32(base, _mm_load_si128(reinterpret_cast<const __m128i*>(kLanesOf[touchBits].lane))));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(ended + endedCount),
-                     _mm_add_epi32(base, _mm_load_si128(reinterpret_cast<const __m128i*>(kLanesOf[endBits].lane))));
-    listed += static_cast<std::size_t>(__builtin_popcount(touchBits));
-    endedCount += static_cast<std::size_t>(__builtin_popcount(endBits));
+    const unsigned endBits = apartBits & ~zeroByteLanes(live4) & validBits;
+    appendLanes(list, listed, k, touchBits);
+    appendLanes(ended, endedCount, k, endBits);
   }
   return listed;
 }
