@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace dem {
 
@@ -64,6 +66,36 @@ void Bonds::markBroken(std::size_t k, BondFailure how, double time, const Vec3& 
   shearForce[k].setZero();
   twistingMoment[k] = 0.0;
   bendingMoment[k].setZero();
+}
+
+void BondStepState::save(const Bonds& b)
+{
+  normalForce = b.normalForce;
+  shearForce = b.shearForce;
+  twistingMoment = b.twistingMoment;
+  bendingMoment = b.bendingMoment;
+  damage = b.damage;
+  failure = b.failure;
+  failureTime = b.failureTime;
+  failurePosition = b.failurePosition;
+  failureNormal = b.failureNormal;
+}
+
+void BondStepState::restore(Bonds& b) const
+{
+  if (b.size() != failure.size()) {
+    throw std::logic_error("BondStepState::restore: " + std::to_string(failure.size()) +
+                           " bonds saved, " + std::to_string(b.size()) + " in the model");
+  }
+  b.normalForce = normalForce;
+  b.shearForce = shearForce;
+  b.twistingMoment = twistingMoment;
+  b.bendingMoment = bendingMoment;
+  b.damage = damage;
+  b.failure = failure;
+  b.failureTime = failureTime;
+  b.failurePosition = failurePosition;
+  b.failureNormal = failureNormal;
 }
 
 BondCounts countBonds(const Bonds& bonds)

@@ -606,7 +606,7 @@ void Simulation::advance(std::int64_t steps)
   saved_.particles = model_.particles;
   saved_.walls = model_.walls;
   saved_.contacts = model_.contacts;
-  saved_.bonds = model_.bonds;
+  saved_.bonds.save(model_.bonds); // what stepping changes (the rest stays as it is)
   saved_.test = model_.test;
   const Clock savedClock = model_.clock;
   try {
@@ -645,7 +645,7 @@ void Simulation::advance(std::int64_t steps)
     model_.particles = saved_.particles;
     model_.walls = saved_.walls;
     model_.contacts = saved_.contacts;
-    model_.bonds = saved_.bonds;
+    saved_.bonds.restore(model_.bonds);
     model_.test = saved_.test;
     model_.clock = savedClock;
     broken_ = true;

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 using namespace dem;
@@ -1008,3 +1009,39 @@ TEST(BondSoftening, RatioOutsideItsRangeIsAnErrorNamingIt)
   }
 }
 
+
+// dem::BondStepState (the rollback of Simulation::advance) takes back every array that
+// stepping changes, and leaves the others to the model; a model with another bond count is
+// refused rather than half restored.
+TEST(Bonds, StepStateRestoresWhatSteppingChanges)
+{
+  dem::Bonds b;
+  b.append(0, 1, 1e-3, 1e12, 4e11, 1e6, 2e6, 0.5, 0.5, 2.0);
+  b.append(1, 2, 2e-3, 2e12, 8e11, 3e6, 4e6, 0.6, 1.0, 0.0);
+  b.normalForce[0] = 3.0;
+  b.shearForce[1] = dem::Vec3(1.0, 2.0, 0.0);
+  b.damage[0] = 0.25;
+  const dem::Bonds before = b;
+  dem::BondStepState saved;
+  saved.save(b);
+  // A step's changes: forces and moments, damage, a failure with its record.
+  b.normalForce[0] = -7.0;
+  b.shearForce[0] = dem::Vec3(0.5, 0.0, 0.1);
+  b.twistingMoment[1] = 0.01;
+  b.bendingMoment[0] = dem::Vec3(0.0, 0.02, 0.0);
+  b.damage[0] = 0.5;
+  b.markBroken(1, dem::BondFailure::Shear, 1e-3, dem::Vec3(1.0, 2.0, 3.0), dem::Vec3(0.0, 0.0, 1.0));
+  saved.restore(b);
+  EXPECT_EQ(b.normalForce, before.normalForce);
+  EXPECT_EQ(b.shearForce, before.shearForce);
+  EXPECT_EQ(b.twistingMoment, before.twistingMoment);
+  EXPECT_EQ(b.bendingMoment, before.bendingMoment);
+  EXPECT_EQ(b.damage, before.damage);
+  EXPECT_EQ(b.failure, before.failure);
+  EXPECT_EQ(b.failureTime, before.failureTime);
+  EXPECT_EQ(b.failurePosition, before.failurePosition);
+  EXPECT_EQ(b.failureNormal, before.failureNormal);
+  EXPECT_EQ(b.radius, before.radius);
+  b.append(2, 3, 1e-3, 1e12, 4e11, 1e6, 2e6, 0.5);
+  EXPECT_THROW(saved.restore(b), std::logic_error);
+}

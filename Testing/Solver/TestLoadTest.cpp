@@ -515,6 +515,16 @@ TEST(Press, UnstableBatchRestoresBondsAndTestState)
   EXPECT_EQ(m.particles.position, before.particles.position);
   EXPECT_EQ(m.bonds.failure, before.bonds.failure) << "bonds broken by the failed batch are restored";
   EXPECT_EQ(m.bonds.normalForce, before.bonds.normalForce);
+  // Every array stepping changes (dem::BondStepState), and the others as they were.
+  EXPECT_EQ(m.bonds.shearForce, before.bonds.shearForce);
+  EXPECT_EQ(m.bonds.twistingMoment, before.bonds.twistingMoment);
+  EXPECT_EQ(m.bonds.bendingMoment, before.bonds.bendingMoment);
+  EXPECT_EQ(m.bonds.damage, before.bonds.damage);
+  EXPECT_EQ(m.bonds.failureTime, before.bonds.failureTime);
+  EXPECT_EQ(m.bonds.failurePosition, before.bonds.failurePosition);
+  EXPECT_EQ(m.bonds.failureNormal, before.bonds.failureNormal);
+  EXPECT_EQ(m.bonds.idA, before.bonds.idA);
+  EXPECT_EQ(m.bonds.tensileStrength, before.bonds.tensileStrength);
   EXPECT_EQ(m.test.history, before.test.history) << "no history rows from the failed batch";
   EXPECT_EQ(m.test.peakStress, before.test.peakStress);
 }

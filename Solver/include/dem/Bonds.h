@@ -82,6 +82,27 @@ struct Bonds {
   void markBroken(std::size_t k, BondFailure how, double time, const Vec3& position, const Vec3& normal);
 };
 
+/// What stepping changes in a Bonds: the forces, moments and damage and the failure record
+/// (the arrays the Vulkan backend moves each way as its dynamic state). Identities,
+/// geometry, stiffnesses and strengths do not change while a model steps, so a rollback
+/// (Simulation::advance's last good state) keeps and restores this part only.
+struct BondStepState {
+  std::vector<double> normalForce;
+  std::vector<Vec3> shearForce;
+  std::vector<double> twistingMoment;
+  std::vector<Vec3> bendingMoment;
+  std::vector<double> damage;
+  std::vector<std::uint8_t> failure;
+  std::vector<double> failureTime;
+  std::vector<Vec3> failurePosition;
+  std::vector<Vec3> failureNormal;
+  /// Copies bonds' step state here (into the buffers already held: no allocation when the
+  /// count is unchanged).
+  void save(const Bonds& bonds);
+  /// Puts the saved state back into bonds, which must hold as many bonds as were saved.
+  void restore(Bonds& bonds) const;
+};
+
 /// Bond counts for the read-only values.
 struct BondCounts {
   std::size_t installed = 0;

@@ -182,7 +182,7 @@ private:
     Particles particles;
     std::vector<Wall> walls;
     ContactHistory contacts;
-    Bonds bonds;
+    BondStepState bonds;
     LoadTestState test;
   } saved_;
 };
