@@ -36,7 +36,10 @@ inline void scatter1(double* a, const std::uint32_t* idx, F64x4 v, int lanes)
 }
 
 /// tan(friction angle) per lane, computed once for a run of equal angles (most bonds of a
-/// rock share one angle; the tangent was about 6 % of a cemented specimen's step).
+/// rock share one angle; the tangent was about 6 % of a cemented specimen's step). The
+/// scalar bond loop keeps the same two values itself: a non-template function shared with
+/// it from a header would be compiled here with AVX2 too, and that copy could be the one
+/// the linker keeps (Avx2Lanes.h).
 struct TanCache {
   double angle = std::nan("");
   double tangent = 0.0;
