@@ -376,7 +376,7 @@ TestMeasurements Simulation::measurements() const
     const std::size_t i = im.pairI[k];
     const std::size_t j = im.pairJ[k];
     const Vec3 branch = minimumImage(d, p.position[i], p.position[j]);
-    sum += branch * im.pairForce[k].transpose(); // arms add up to the branch
+    sum += branch * im.pairResult[k].force.transpose(); // arms add up to the branch
   }
   for (std::size_t k = 0; k < im.bondI.size(); ++k) {
     if (model_.bonds.broken(k)) {
@@ -475,7 +475,7 @@ InteractionForces Simulation::interactionForces() const
       const double distance = branch.norm();
       const double overlap = p.radius[i] + p.radius[j] - distance;
       const Vec3 armI = (p.radius[i] - 0.5 * overlap) / distance * branch; // as the CPU backend's contact loop
-      out.append(i, j, im.pairForce[k], armI, armI - branch);
+      out.append(i, j, im.pairResult[k].force, armI, armI - branch);
     }
   }
   for (std::size_t k = 0; k < im.bondI.size(); ++k) {
@@ -830,7 +830,7 @@ double Simulation::contactForceMagnitude(const ContactState& im, std::size_t i) 
   for (std::size_t e = im.adjacencyStart[i]; e < im.adjacencyStart[i + 1]; ++e) {
     const std::size_t k = im.adjacency[e] >> 1;
     if (im.pairNormal[k] != 0.0) {
-      magnitude += im.pairForce[k].norm();
+      magnitude += im.pairResult[k].force.norm();
     }
   }
   for (std::size_t e = im.wallStart[i]; e < im.wallStart[i + 1]; ++e) {

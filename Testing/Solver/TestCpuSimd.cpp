@@ -5,6 +5,7 @@
 // bond can be in, and over whole cemented runs that break bonds. Skipped (and says so) on a
 // processor or build without the kernels.
 #include "StateFixtures.h"
+#include "backends/ContactState.h"
 #include "backends/cpu/IntactBond.h"
 #include "backends/cpu/TouchingPair.h"
 
@@ -196,21 +197,25 @@ TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
       // The kernel on lists of 1 to 4 copies of this pair's slot in fresh output arrays:
       // each list length leaves a different number of lanes unused.
       for (std::size_t listLength = 1; listLength <= 4; ++listLength) {
-        std::vector<double> springOut(spring), force(3 * pairs, -7.0), torqueI(3 * pairs, -7.0),
-          torqueJ(3 * pairs, -7.0), normal(pairs, -7.0);
+        std::vector<double> springOut(spring), normal(pairs, -7.0);
+        std::vector<PairResult> rows(pairs); // force, n x Ft, the two arms: 8 doubles per pair
+        double* const row = reinterpret_cast<double*>(rows.data());
+        std::fill(row, row + 8 * pairs, -7.0);
         std::copy(springK.begin(), springK.end(), springOut.begin() + 3 * k);
         std::vector<std::uint8_t> live(pairs, 0), touching(particles, 0);
         const TouchingPairArrays arrays{ pos.data(), velocity.data(), spin.data(), lastForce.data(),
           radius.data(), inverseMass.data(), pairI.data(), pairJ.data(), constants.data(),
-          springOut.data(), force.data(), torqueI.data(), torqueJ.data(), normal.data(),
+          springOut.data(), row, normal.data(),
           live.data(), touching.data(), hertz, 0.3, dt, 0.5 * dt };
         // The same pair in every listed lane: the results are stored once per lane, equal.
         const std::vector<std::uint32_t> list(listLength, static_cast<std::uint32_t>(k));
         touchingPairsAvx2(arrays, list.data(), list.size());
         EXPECT_EQ(std::memcmp(&springOut[3 * k], springScalar.data(), 3 * sizeof(double)), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&force[3 * k], expected.force.data(), 3 * sizeof(double)), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&torqueI[3 * k], expected.torqueI.data(), 3 * sizeof(double)), 0) << "pair " << k;
-        EXPECT_EQ(std::memcmp(&torqueJ[3 * k], expected.torqueJ.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(rows[k].force.data(), expected.force.data(), 3 * sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(rows[k].normalCrossFt.data(), expected.normalCrossFt.data(), 3 * sizeof(double)), 0)
+          << "pair " << k;
+        EXPECT_EQ(std::memcmp(&rows[k].arm[0], &expected.armI, sizeof(double)), 0) << "pair " << k;
+        EXPECT_EQ(std::memcmp(&rows[k].arm[1], &expected.armJ, sizeof(double)), 0) << "pair " << k;
         EXPECT_EQ(std::memcmp(&normal[k], &expected.normalForce, sizeof(double)), 0) << "pair " << k;
         EXPECT_EQ(live[k], 1);
         EXPECT_EQ(touching[i] == 1 && touching[j] == 1, expected.normalForce != 0.0) << "pair " << k;
@@ -218,7 +223,9 @@ TEST(CpuSimd, KernelGivesTheScalarLawBitsPairByPair)
         for (std::size_t other = 0; other < pairs; ++other) {
           if (other != k) {
             EXPECT_EQ(normal[other], -7.0);
-            EXPECT_EQ(force[3 * other], -7.0);
+            for (int c = 0; c < 8; ++c) {
+              EXPECT_EQ(row[8 * other + c], -7.0);
+            }
             EXPECT_EQ(live[other], 0);
           }
         }

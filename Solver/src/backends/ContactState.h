@@ -17,15 +17,29 @@
 
 namespace dem {
 
+/// One pair's results, in one 64-byte cache line: the gather reads one line per entry
+/// (three rows of three arrays before, which waited on memory in a large pack). The torque
+/// of the contact force about i's centre is arm[0] (n x Ft), about j's arm[1] (n x Ft), each
+/// product rounded as the pair law rounds it (TouchingPair.h): the same bits.
+struct alignas(64) PairResult {
+  Vec3 force = Vec3::Zero();         ///< N, force on i (j gets the opposite)
+  Vec3 normalCrossFt = Vec3::Zero(); ///< N, the normal (i to j) cross the tangential force
+  double arm[2] = { 0.0, 0.0 };      ///< m, from i's (0) and j's (1) centre to the contact point
+};
+static_assert(sizeof(PairResult) == 64, "one pair's results fill one cache line");
+
 struct ContactState {
   // Neighbour list: particle pairs (slots i < j) within reach, sorted by (i, j).
   std::vector<std::uint32_t> pairI, pairJ;
   std::vector<ContactConstants> pairConstants; // per pair: stiffness and damping factors
   std::vector<Vec3> pairSpring;      // m, tangential history
   std::vector<Vec3> pairRolling;     // N m, rolling history (empty if rolling is off)
-  std::vector<Vec3> pairForce;       // N, force on i (j gets the opposite)
-  std::vector<Vec3> pairTorqueI;     // N m
-  std::vector<Vec3> pairTorqueJ;     // N m
+  // What the pair loop gives (PairResult: the force, n x Ft and the two arms, one cache
+  // line per pair), and the rolling resistance torque on i (N m; j gets the opposite;
+  // empty if rolling is off). The torques about the centres are the arms times n x Ft
+  // plus (on j minus) the rolling torque: the gather computes them.
+  std::vector<PairResult> pairResult;
+  std::vector<Vec3> pairRollingTorque;
   std::vector<double> pairNormal;    // N, normal force magnitude (0: adds nothing, the gather skips it)
   // 1: the pair may hold state (a normal force, a spring or a rolling spring) that its
   // end must clear; 0: all of it is zero. Set by every evaluation of a touching pair and

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -129,9 +130,9 @@ inline Vec3 withSignFlipped(const Vec3& v, bool flip)
   return out;
 }
 
-/// Adds particle i's share of a pair's or bond's force and torques to its sums, without a
-/// branch on the entry (whether it acts and which end i is are data, and a branch on them
-/// was mispredicted about one entry in three): i of the pair adds the force and torque I,
+/// Adds particle i's share of a bond's force and torques to its sums, without a branch on
+/// the entry (whether it acts and which end i is are data, and a branch on them was
+/// mispredicted about one entry in three): i of the bond adds the force and torque I,
 /// j minus the force and torque J, and an entry that does not act (`live` false) adds
 /// -0.0, which leaves every sum as it is (x + -0.0 is x for every x, -0.0 included), as
 /// skipping it did; minus the force is the force with its sign bit flipped (x - y is
@@ -158,6 +159,31 @@ inline Vec3 withSignFlipped(const Vec3& v, bool flip)
     std::memcpy(&tc, &tBits, sizeof tc);
     sumForce[c] += fc;
     sumTorque[c] += tc;
+  }
+}
+
+/// A pair's entry that acts (one cache line, dem::PairResult): i adds the force and
+/// arm[0] (n x Ft), j minus the force and arm[1] (n x Ft); with rolling resistance
+/// (`rolling` not null) the rolling torque is added to the product on i and subtracted on j
+/// before the sum, as the pair law did: the same bits as the torques it stored before the
+/// row held the arms.
+[[gnu::always_inline]] inline void addPairEntry(bool asJ, const PairResult& row, const Vec3* rolling,
+                                                Vec3& sumForce, Vec3& sumTorque)
+{
+  const double arm = row.arm[asJ ? 1 : 0]; // an indexed load: a branch was mispredicted
+  const std::uint64_t sign = static_cast<std::uint64_t>(asJ) << 63;
+  for (int c = 0; c < 3; ++c) {
+    double torque = arm * row.normalCrossFt[c];
+    if (rolling != nullptr) {
+      torque += withSignFlipped(*rolling, asJ)[c];
+    }
+    std::uint64_t bits;
+    std::memcpy(&bits, &row.force[c], sizeof bits);
+    bits ^= sign;
+    double force;
+    std::memcpy(&force, &bits, sizeof force);
+    sumForce[c] += force;
+    sumTorque[c] += torque;
   }
 }
 
@@ -444,9 +470,8 @@ void CpuBackend::rebuildNeighbours(bool importModelHistory)
   }
   im.pairSpring.assign(pairs, Vec3::Zero());
   im.pairRolling.assign(rolling ? pairs : 0, Vec3::Zero());
-  im.pairForce.assign(pairs, Vec3::Zero());
-  im.pairTorqueI.assign(pairs, Vec3::Zero());
-  im.pairTorqueJ.assign(pairs, Vec3::Zero());
+  im.pairResult.assign(pairs, PairResult{});
+  im.pairRollingTorque.assign(rolling ? pairs : 0, Vec3::Zero());
   im.pairNormal.assign(pairs, 0.0);
   im.pairLive.assign(pairs, 1); // the first evaluation clears the flag where there is no state
   im.positionAtBuild = p.position;
@@ -689,9 +714,8 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const ContactConstants* const pairConstants = im.pairConstants.data();
   Vec3* const pairSpring = im.pairSpring.data();
   Vec3* const pairRolling = im.pairRolling.data();
-  Vec3* const pairForce = im.pairForce.data();
-  Vec3* const pairTorqueI = im.pairTorqueI.data();
-  Vec3* const pairTorqueJ = im.pairTorqueJ.data();
+  PairResult* const pairResult = im.pairResult.data();
+  Vec3* const pairRollingTorque = im.pairRollingTorque.data();
   double* const pairNormal = im.pairNormal.data();
   std::uint8_t* const pairLive = im.pairLive.data();
   std::uint8_t* const touching = im.touching.data();
@@ -701,11 +725,13 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   // the same bits.
   const bool hertz = cm.law == ContactLaw::HertzMindlin;
   [[maybe_unused]] const bool simd = simd_ && !rolling && separationOf.plain();
-  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(ContactConstants) == 3 * sizeof(double),
-                "the AVX2 kernel reads these arrays as plain doubles");
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(ContactConstants) == 3 * sizeof(double) &&
+                  sizeof(PairResult) == 8 * sizeof(double) && offsetof(PairResult, normalCrossFt) == 24 &&
+                  offsetof(PairResult, arm) == 48,
+                "the AVX2 kernel reads and writes these arrays as plain doubles");
   [[maybe_unused]] const TouchingPairArrays arrays{ doubles(position), doubles(velocity), doubles(spin),
     doubles(lastForce), radius, inverseMass, pairI, pairJ, doubles(pairConstants),
-    doubles(pairSpring), doubles(pairForce), doubles(pairTorqueI), doubles(pairTorqueJ),
+    doubles(pairSpring), reinterpret_cast<double*>(pairResult),
     pairNormal, pairLive, touching, hertz, cm.friction, dt, predict };
   // A pair that does not touch (any longer): clear its force and history once, where it
   // may hold some (pairLive 1); a pair without state has nothing to clear: one byte read
@@ -714,13 +740,12 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   auto endContact = [=](std::size_t k) {
     if (pairNormal[k] != 0.0 || !pairSpring[k].isZero(0.0) ||
         (rolling && !pairRolling[k].isZero(0.0))) {
-      pairForce[k].setZero();
-      pairTorqueI[k].setZero();
-      pairTorqueJ[k].setZero();
+      pairResult[k] = PairResult{};
       pairNormal[k] = 0.0;
       pairSpring[k].setZero();
       if (rolling) {
         pairRolling[k].setZero();
+        pairRollingTorque[k].setZero();
       }
     }
     pairLive[k] = 0;
@@ -780,20 +805,18 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
         touchingPairForce(in, hertz, cm.friction, dt, predict, pairSpring[k]);
       ++evaluated;
       const double fn = r.normalForce;
-      Vec3 torqueI = r.torqueI;
-      Vec3 torqueJ = r.torqueJ;
       if (rolling) {
         const Vec3& normal = r.normal;
         const PairProperties pair =
           pairProperties(cm, radius[i], massOf(i), radius[j], massOf(j), planar, slab);
         const Vec3 roll = inPlane(spin[i] - spin[j], normal) * dt;
-        const Vec3 mr = rollingTorque(cm, pair, overlap, fn, normal, roll, pairRolling[k]);
-        torqueI += mr;
-        torqueJ -= mr;
+        pairRollingTorque[k] = rollingTorque(cm, pair, overlap, fn, normal, roll, pairRolling[k]);
       }
-      pairForce[k] = r.force;
-      pairTorqueI[k] = torqueI;
-      pairTorqueJ[k] = torqueJ;
+      PairResult& row = pairResult[k];
+      row.force = r.force;
+      row.normalCrossFt = r.normalCrossFt;
+      row.arm[0] = r.armI;
+      row.arm[1] = r.armJ;
       pairNormal[k] = fn;
       pairLive[k] = 1;
       if (fn != 0.0) {
@@ -920,26 +943,62 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const double limit2 = skinLimit * skinLimit;
   staleByRank_.assign(static_cast<std::size_t>(parts), 0);
   std::uint8_t* const staleByRank = staleByRank_.data();
+  if (gatherScratch_.size() < static_cast<std::size_t>(parts)) {
+    gatherScratch_.resize(static_cast<std::size_t>(parts));
+  }
+  GatherScratch* const gatherScratch = gatherScratch_.data();
   team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
   bool rankStale = false; // this rank's drift made the list stale
   for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
     const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
+    // The chunk's pair entries that act, particle by particle (those of particle li are
+    // actingEntry[actingStart[li - chunkBegin] .. actingStart[li - chunkBegin + 1])). A pair
+    // without normal force (not touching, or no force) adds nothing, and most pairs of a
+    // pack do not touch (88 % of a settled pack's): the entries are sorted out first, one
+    // independent load of a normal force each and no branch on each, and then only the
+    // rows of those that act are read, fetched ahead (skipping an entry gives the bits of
+    // adding -0.0 for it: x + -0.0 is x). A particle without a touching pair skips its list.
+    GatherScratch& scratch = gatherScratch[part];
+    const std::size_t chunkEntries = adjacencyStart[chunkEnd] - adjacencyStart[chunkBegin];
+    if (scratch.entry.size() < chunkEntries) {
+      scratch.entry.resize(chunkEntries);
+      scratch.owner.resize(chunkEntries);
+    }
+    if (scratch.force.empty()) {
+      scratch.force.resize(kGatherChunk);
+      scratch.torque.resize(kGatherChunk);
+    }
+    std::uint32_t* const actingEntry = scratch.entry.data();
+    std::uint32_t* const actingOwner = scratch.owner.data();
+    Vec3* const chunkForce = scratch.force.data();
+    Vec3* const chunkTorque = scratch.torque.data();
+    std::uint32_t acting = 0;
     for (long li = chunkBegin; li < chunkEnd; ++li) {
       const std::size_t i = static_cast<std::size_t>(li);
-      Vec3 force = mass[i] * gravity;
-      Vec3 torque = Vec3::Zero();
-      // Without a touching pair (none has a non-zero normal force) the list adds nothing.
+      chunkForce[li - chunkBegin] = mass[i] * gravity;
+      chunkTorque[li - chunkBegin].setZero();
       const std::uint32_t pairEnd = touching[i] ? adjacencyStart[i + 1] : adjacencyStart[i];
       touching[i] = 0;
       for (std::uint32_t e = adjacencyStart[i]; e < pairEnd; ++e) {
-        // A pair without normal force (not touching, or no force) adds nothing (addEntry).
         const std::uint32_t entry = adjacency[e];
-        const std::uint32_t k = entry >> 1;
-        addEntry(pairNormal[k] != 0.0, (entry & 1u) != 0, pairForce + k, pairTorqueI + k, pairTorqueJ + k,
-                 force, torque);
+        actingEntry[acting] = entry;
+        actingOwner[acting] = static_cast<std::uint32_t>(li - chunkBegin);
+        acting += pairNormal[entry >> 1] != 0.0 ? 1u : 0u;
       }
+    }
+    // One loop over the chunk's acting entries (a loop per particle ended in a mispredicted
+    // branch per particle), each added to its particle's sums in the list's order.
+    for (std::uint32_t a = 0; a < acting; ++a) {
+      const std::uint32_t k = actingEntry[a] >> 1;
+      addPairEntry((actingEntry[a] & 1u) != 0, pairResult[k], rolling ? pairRollingTorque + k : nullptr,
+                   chunkForce[actingOwner[a]], chunkTorque[actingOwner[a]]);
+    }
+    for (long li = chunkBegin; li < chunkEnd; ++li) {
+      const std::size_t i = static_cast<std::size_t>(li);
+      Vec3 force = chunkForce[li - chunkBegin];
+      Vec3 torque = chunkTorque[li - chunkBegin];
       for (std::size_t e = wallStart[i]; e < wallStart[i + 1]; ++e) {
         wallContact(e, i, force, torque);
       }

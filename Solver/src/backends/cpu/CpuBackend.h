@@ -99,6 +99,14 @@ private:
   // stale" from its share of the drift.
   WorkerTeam team_;
   std::vector<std::uint8_t> staleByRank_;
+  // Per thread, the gather's work space for one chunk of particles (computeForces): the
+  // chunk's pair entries that act with the chunk slot of their particle, and the
+  // particles' sums of them.
+  struct GatherScratch {
+    std::vector<std::uint32_t> entry, owner;
+    std::vector<Vec3> force, torque;
+  };
+  std::vector<GatherScratch> gatherScratch_;
 };
 
 } // namespace dem

@@ -32,14 +32,16 @@ template <class V, class S = typename VecOps<V>::Scalar> struct TouchingPairInpu
   S normalStiffness, normalDamping, tangentialStiffness; ///< dem::ContactConstants
 };
 
-/// What it gives: the normal (unit, from i to j), the normal force magnitude, and the
-/// force on i (j gets the opposite) with the torques about both centres. The spring (m)
-/// is updated in place.
+/// What it gives: the normal (unit, from i to j), the normal force magnitude, the force on
+/// i (j gets the opposite), and n x Ft with the two arms: the torques about the centres are
+/// armI (n x Ft) and armJ (n x Ft), which the gather multiplies out (dem::PairResult). The
+/// spring (m) is updated in place.
 template <class V, class S = typename VecOps<V>::Scalar> struct TouchingPairResult {
   V normal;
   S normalForce;
   V force;
-  V torqueI, torqueJ;
+  V normalCrossFt;
+  S armI, armJ;
 };
 
 /// The pair law of a touching pair: relative velocity at the contact point, the normal
@@ -73,8 +75,7 @@ ROCKDEM_INLINE_LAW TouchingPairResult<V> touchingPairForce(const TouchingPairInp
   const V ft = mindlinCoulombForceLanes(response.tangentialStiffness, friction, fn, normal, slip, spring);
   const V normalCrossFt = O::cross(normal, ft);
   const S minusFn = -fn;
-  return { normal, fn, O::scaled(minusFn, normal) + ft, O::scaled(armI, normalCrossFt),
-           O::scaled(armJ, normalCrossFt) };
+  return { normal, fn, O::scaled(minusFn, normal) + ft, normalCrossFt, armI, armJ };
 }
 
 /// The pair arrays of the CPU backend as plain doubles (a Vec3 is three doubles), for the
@@ -90,9 +91,7 @@ struct TouchingPairArrays {
   const std::uint32_t* pairJ;
   const double* constants;   ///< dem::ContactConstants: 3 per pair
   double* spring;            ///< 3 per pair
-  double* force;             ///< 3 per pair
-  double* torqueI;           ///< 3 per pair
-  double* torqueJ;           ///< 3 per pair
+  double* result;            ///< dem::PairResult: 8 per pair (force, n x Ft, armI, armJ)
   double* normal;            ///< 1 per pair
   std::uint8_t* live;        ///< 1 per pair
   std::uint8_t* touching;    ///< 1 per particle

@@ -17,6 +17,33 @@
 namespace dem {
 namespace {
 using Ops = LaneOps<F64x4>;
+
+/// Lanes a, b, c, d transposed: row l holds (a[l], b[l], c[l], d[l]).
+inline void transpose4(const F64x4& a, const F64x4& b, const F64x4& c, const F64x4& d, __m256d row[4])
+{
+  const __m256d ab02 = _mm256_unpacklo_pd((__m256d)a, (__m256d)b); // a0 b0 a2 b2
+  const __m256d ab13 = _mm256_unpackhi_pd((__m256d)a, (__m256d)b); // a1 b1 a3 b3
+  const __m256d cd02 = _mm256_unpacklo_pd((__m256d)c, (__m256d)d);
+  const __m256d cd13 = _mm256_unpackhi_pd((__m256d)c, (__m256d)d);
+  row[0] = _mm256_permute2f128_pd(ab02, cd02, 0x20);
+  row[1] = _mm256_permute2f128_pd(ab13, cd13, 0x20);
+  row[2] = _mm256_permute2f128_pd(ab02, cd02, 0x31);
+  row[3] = _mm256_permute2f128_pd(ab13, cd13, 0x31);
+}
+
+/// The first `lanes` lanes' results stored to their dem::PairResult rows (8 doubles each,
+/// 64-byte aligned: force, n x Ft, armI, armJ), two aligned stores per row.
+inline void storeResults(double* rows, const std::uint32_t* k, const TouchingPairResult<V3>& r, int lanes)
+{
+  __m256d lo[4], hi[4];
+  transpose4(r.force.x, r.force.y, r.force.z, r.normalCrossFt.x, lo);
+  transpose4(r.normalCrossFt.y, r.normalCrossFt.z, r.armI, r.armJ, hi);
+  for (int l = 0; l < lanes; ++l) {
+    double* row = rows + 8 * static_cast<std::size_t>(k[l]);
+    _mm256_store_pd(row, lo[l]);
+    _mm256_store_pd(row + 4, hi[l]);
+  }
+}
 } // namespace
 
 std::size_t scanPairsAvx2(const TouchingPairArrays& a, std::size_t first, std::size_t last,
@@ -107,9 +134,7 @@ void touchingPairsAvx2(const TouchingPairArrays& a, const std::uint32_t* list, s
     V3 spring = gather3(a.spring, k);
     const TouchingPairResult<V3> r = touchingPairForce(in, a.hertz, friction, dt, predict, spring);
     scatter3(a.spring, k, spring, lanes);
-    scatter3(a.force, k, r.force, lanes);
-    scatter3(a.torqueI, k, r.torqueI, lanes);
-    scatter3(a.torqueJ, k, r.torqueJ, lanes);
+    storeResults(a.result, k, r, lanes);
     alignas(32) double fn[4];
     _mm256_store_pd(fn, (__m256d)r.normalForce);
     for (int l = 0; l < lanes; ++l) {

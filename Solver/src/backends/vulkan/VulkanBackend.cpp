@@ -571,6 +571,10 @@ template <class T> Transfer piece(std::vector<T>& v, const vk::Buffer& b, std::u
 struct VulkanBackend::Images {
   std::vector<std::uint32_t> adjacencyStart, adjacency, wallIndex, wallTouching, failure;
   std::vector<double> walls, clock;
+  // The pairs' forces as the device holds them (the host keeps them in dem::PairResult
+  // rows). The pairs' torques are not moved: the device recomputes them, as the host does,
+  // before its gather reads them, and the gather reads no pair without a normal force.
+  std::vector<Vec3> pairForce;
 };
 
 std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
@@ -585,9 +589,9 @@ std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
   st.pairConstants.resize(pairs_);
   st.pairSpring.resize(pairs_);
   st.pairRolling.resize(rolling_ ? pairs_ : 0);
-  st.pairForce.resize(pairs_);
-  st.pairTorqueI.resize(pairs_);
-  st.pairTorqueJ.resize(pairs_);
+  st.pairResult.resize(pairs_);
+  st.pairRollingTorque.resize(rolling_ ? pairs_ : 0);
+  im.pairForce.resize(pairs_);
   st.pairNormal.resize(pairs_);
   st.pairLive.assign(pairs_, 1); // the device keeps no such flag: the host checks every pair
   st.wallSlot.resize(wallEntries_);
@@ -628,9 +632,7 @@ std::vector<vk::Transfer> VulkanBackend::dynamicState(Images& im)
   if (rolling_) {
     add(st.pairRolling, "pairRolling", pairs_);
   }
-  add(st.pairForce, "pairForce", pairs_);
-  add(st.pairTorqueI, "pairTorqueI", pairs_);
-  add(st.pairTorqueJ, "pairTorqueJ", pairs_);
+  add(im.pairForce, "pairForce", pairs_);
   add(st.pairNormal, "pairNormal", pairs_);
   add(st.wallStart, "wallStart", n + 1);
   add(st.wallSlot, "wallSlot", wallEntries_);
@@ -685,6 +687,9 @@ void VulkanBackend::upload()
   std::vector<Transfer> items = dynamicState(im);
   std::copy(st.adjacencyStart.begin(), st.adjacencyStart.end(), im.adjacencyStart.begin());
   std::copy(st.adjacency.begin(), st.adjacency.end(), im.adjacency.begin());
+  for (std::size_t k = 0; k < pairs_; ++k) {
+    im.pairForce[k] = st.pairResult[k].force;
+  }
   std::copy(st.wallIndex.begin(), st.wallIndex.end(), im.wallIndex.begin());
   std::copy(st.wallTouching.begin(), st.wallTouching.end(), im.wallTouching.begin());
   std::copy(b.failure.begin(), b.failure.end(), im.failure.begin());
@@ -780,6 +785,9 @@ void VulkanBackend::download()
   ContactState& st = host_->state();
   st.adjacencyStart.assign(im.adjacencyStart.begin(), im.adjacencyStart.end());
   st.adjacency.assign(im.adjacency.begin(), im.adjacency.end());
+  for (std::size_t k = 0; k < pairs_; ++k) {
+    st.pairResult[k].force = im.pairForce[k];
+  }
   st.wallIndex.assign(im.wallIndex.begin(), im.wallIndex.end());
   st.wallTouching.assign(im.wallTouching.begin(), im.wallTouching.end());
   st.touching.assign(n_, 0);
