@@ -20,7 +20,9 @@
 #
 # Environment: BENCH (path of rockdem_bench_solver), MPIRUN (default: mpirun
 # --allow-run-as-root), NP (processes / threads of the parallel runs; default nproc),
-# REPEAT (runs of ours per configuration, fastest reported; default 1). The last column
+# REPEAT (rounds per configuration, the two codes taking turns, medians reported; default
+# 1; each round's figures are printed as "TAG round: ours-1 KE ours-NP KE LIGGGHTS-1-seconds
+# KE LIGGGHTS-NP-seconds KE others"). The last column
 # says how many cores other processes kept busy during our NP-thread run: on a shared
 # machine the threaded figures (ours and LIGGGHTS's) are only meaningful near 0.
 set -euo pipefail
@@ -37,7 +39,7 @@ while [ $# -gt 0 ]; do
     --bench) BENCH="$2"; shift 2 ;;
     --restitution) RESTITUTION="$2"; shift 2 ;;
     --keep) KEEP="$2"; shift 2 ;;
-    -h|--help) sed -n '2,26p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) echo "unknown argument: $1" >&2; exit 2 ;;
   esac
 done
@@ -106,18 +108,35 @@ for pack in $PACKS; do
     "$BENCH" --write-pack "$WORK/$tag.pack" --pack "$pack" --sizes "$n" --restitution "$RESTITUTION" > /dev/null
     natoms="$(sed -n 's/^# particles //p' "$WORK/$tag.pack")"
     make_deck "$WORK/$tag.pack" "$WORK/$tag.data" "$WORK/$tag.in" "$steps"
-    # Ours: 1 thread and NP threads, no Cundall damping (LIGGGHTS has none).
-    "$BENCH" --sizes "$n" --packs "$pack" --threads "1,$NP" --steps "$steps" --damping 0 \
-      --restitution "$RESTITUTION" --repeat "$REPEAT" --csv "$WORK/$tag.ours.csv" > "$WORK/$tag.ours.log"
-    ours1="$(awk -F, 'NR>1 && $3==1 {print $8, $13}' "$WORK/$tag.ours.csv")"
-    oursN="$(awk -F, -v np="$NP" 'NR>1 && $3==np {print $8, $13, $14}' "$WORK/$tag.ours.csv")"
-    (cd "$WORK" && "$LIGGGHTS" -in "$tag.in" -log "$tag.lig1.log" > /dev/null)
-    lig1="$(parse_liggghts "$WORK/$tag.lig1.log" "$steps")"
-    (cd "$WORK" && $MPIRUN -np "$NP" "$LIGGGHTS" -in "$tag.in" -log "$tag.ligN.log" > /dev/null 2>&1) || true
-    ligN="$(parse_liggghts "$WORK/$tag.ligN.log" "$steps" 2>/dev/null || echo 'nan nan')"
-    read -r o1 oke1 <<< "$ours1"
-    read -r oN okeN obusy <<< "$oursN"
-    echo "$pack $natoms $steps $o1 $oke1 $oN $okeN $lig1 $ligN $obusy" >> "$RESULTS"
+    # REPEAT rounds, the two codes taking turns (ours on 1 and NP threads, then LIGGGHTS on
+    # 1 and NP ranks): on a machine whose speed drifts over minutes, a slow spell slows
+    # runs of both codes instead of one code's. Ours without Cundall damping (LIGGGHTS has
+    # none). The medians of the rounds are reported; every run is in $tag.runs.
+    : > "$WORK/$tag.runs"
+    for r in $(seq "$REPEAT"); do
+      "$BENCH" --sizes "$n" --packs "$pack" --threads "1,$NP" --steps "$steps" --damping 0 \
+        --restitution "$RESTITUTION" --repeat 1 --csv "$WORK/$tag.ours.$r.csv" > "$WORK/$tag.ours.$r.log"
+      ours1="$(awk -F, 'NR>1 && $3==1 {print $8, $13}' "$WORK/$tag.ours.$r.csv")"
+      oursN="$(awk -F, -v np="$NP" 'NR>1 && $3==np {print $8, $13, $14}' "$WORK/$tag.ours.$r.csv")"
+      (cd "$WORK" && "$LIGGGHTS" -in "$tag.in" -log "$tag.lig1.$r.log" > /dev/null)
+      lig1="$(parse_liggghts "$WORK/$tag.lig1.$r.log" "$steps")"
+      (cd "$WORK" && $MPIRUN -np "$NP" "$LIGGGHTS" -in "$tag.in" -log "$tag.ligN.$r.log" > /dev/null 2>&1) || true
+      ligN="$(parse_liggghts "$WORK/$tag.ligN.$r.log" "$steps" 2>/dev/null || echo 'nan nan')"
+      read -r o1 oke1 <<< "$ours1"
+      read -r oN okeN obusy <<< "$oursN"
+      echo "$o1 $oke1 $oN $okeN $lig1 $ligN $obusy" >> "$WORK/$tag.runs"
+    done
+    echo "$pack $natoms $steps $(python3 - "$WORK/$tag.runs" <<'PY'
+import statistics, sys
+runs = [l.split() for l in open(sys.argv[1]) if l.strip()]
+def med(c):
+    values = [float(r[c]) for r in runs]
+    return statistics.median(values) if all(v == v for v in values) else float('nan')
+# ours 1 (p-steps/s), its KE, ours NP, its KE, LIGGGHTS 1 (s), its KE, LIGGGHTS NP (s), its KE, others
+print(med(0), runs[-1][1], med(2), runs[-1][3], med(4), runs[-1][5], med(6), runs[-1][7], max(float(r[8]) for r in runs))
+PY
+)" >> "$RESULTS"
+    sed "s/^/  $tag round: /" "$WORK/$tag.runs"
   done
 done
 

@@ -13,10 +13,11 @@
 #    --settle seconds (0.06 s = 12,000 steps); the settled positions (at rest, no history)
 #    are the pack both codes are timed on. --cells "43 43 54" is the 100k version (99,846
 #    spheres, the same proportions).
-# 2. Timed, --steps steps, --repeat runs each, the median printed: LIGGGHTS on 1 and 2 MPI
-#    ranks ("Loop time"), RockDEM through pvpython (CSV Reader -> Table To Points -> DEM
-#    Model From Points -> DEM Load Test, Mode Off, Settling Damping 0; the second of two
-#    frames of --steps steps is timed; scripts/time_pack_pvpython.py) on 1 and 2 threads.
+# 2. Timed, --steps steps, --repeat runs each, the two codes taking turns, the medians
+#    printed: LIGGGHTS on 1 and 2 MPI ranks ("Loop time"), RockDEM through pvpython (CSV
+#    Reader -> Table To Points -> DEM Model From Points -> DEM Load Test, Mode Off, Settling
+#    Damping 0; the second of two frames of --steps steps is timed;
+#    scripts/time_pack_pvpython.py) on 1 and 2 threads.
 #
 # Environment: ROCKDEM_PLUGIN (default: build/lib/paraview-plugins/RockDEM/RockDEM.so),
 # PVPYTHON (default pvpython), MPIRUN (default mpirun --allow-run-as-root). The load
@@ -38,7 +39,7 @@ while [ $# -gt 0 ]; do
     --repeat) REPEAT="$2"; shift 2 ;;
     --threads) THREADS="$2"; shift 2 ;;
     --keep) KEEP="$2"; shift 2 ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "unknown argument: $1" >&2; exit 2 ;;
   esac
 done
@@ -78,6 +79,9 @@ loop_time() { sed -n 's/^Loop time of \([0-9.eE+-]*\) on.*/\1/p' "$1" | tail -1;
 declare -A LIG OURS CONTACTS
 for np in $THREADS; do
   : > "$WORK/lig$np.times"
+  : > "$WORK/ours$np.log"
+  # The two codes take turns (LIGGGHTS, RockDEM, LIGGGHTS, ...): on a machine whose speed
+  # drifts over minutes, a slow spell then slows runs of both instead of one code's three.
   for r in $(seq "$REPEAT"); do
     if [ "$np" = 1 ]; then
       (cd "$WORK" && "$LIGGGHTS" -in timed.in -log "timed1.$r.log" > /dev/null)
@@ -85,10 +89,10 @@ for np in $THREADS; do
       (cd "$WORK" && $MPIRUN -np "$np" "$LIGGGHTS" -in timed.in -log "timed$np.$r.log" > /dev/null 2>&1)
     fi
     loop_time "$WORK/timed$np.$r.log" >> "$WORK/lig$np.times"
+    "$PVPYTHON" "$ROOT/scripts/time_pack_pvpython.py" "$WORK/settled.pack" --steps "$STEPS" --threads "$np" \
+      --repeat 1 | sed "s/^run 0 /run $((r - 1)) /" >> "$WORK/ours$np.log"
   done
   LIG[$np]="$(median < "$WORK/lig$np.times")"
-  "$PVPYTHON" "$ROOT/scripts/time_pack_pvpython.py" "$WORK/settled.pack" --steps "$STEPS" --threads "$np" \
-    --repeat "$REPEAT" > "$WORK/ours$np.log"
   OURS[$np]="$(awk '$1 == "run" {print $8}' "$WORK/ours$np.log" | median)"
   CONTACTS[$np]="$(awk '$1 == "run" {c = $12} END {print c}' "$WORK/ours$np.log")"
   sed 's/^/  ours: /' "$WORK/ours$np.log"
