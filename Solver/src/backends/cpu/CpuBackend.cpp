@@ -953,13 +953,13 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
     const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
-    // The chunk's pair entries that act, particle by particle (those of particle li are
-    // actingEntry[actingStart[li - chunkBegin] .. actingStart[li - chunkBegin + 1])). A pair
-    // without normal force (not touching, or no force) adds nothing, and most pairs of a
-    // pack do not touch (88 % of a settled pack's): the entries are sorted out first, one
-    // independent load of a normal force each and no branch on each, and then only the
-    // rows of those that act are read, fetched ahead (skipping an entry gives the bits of
-    // adding -0.0 for it: x + -0.0 is x). A particle without a touching pair skips its list.
+    // The chunk's pair entries that act (actingEntry), each with its particle's slot in the
+    // chunk (actingOwner), in the gather's order. A pair without normal force (not touching,
+    // or no force) adds nothing, and most pairs of a pack do not touch (88 % of a settled
+    // pack's): the entries are sorted out first, one independent load of a normal force
+    // each and no branch on each, and then only the rows of those that act are read
+    // (skipping an entry gives the bits of adding -0.0 for it: x + -0.0 is x). A particle
+    // without a touching pair skips its list. The sums start from the weight, as before.
     GatherScratch& scratch = gatherScratch[part];
     const std::size_t chunkEntries = adjacencyStart[chunkEnd] - adjacencyStart[chunkBegin];
     if (scratch.entry.size() < chunkEntries) {
