@@ -68,17 +68,26 @@ void Bonds::markBroken(std::size_t k, BondFailure how, double time, const Vec3& 
   bendingMoment[k].setZero();
 }
 
+namespace {
+/// The arrays stepping changes, listed once: each of `from`'s copied into `to`'s (from a
+/// Bonds into a BondStepState, or back).
+template <class From, class To> void copyStepState(const From& from, To& to)
+{
+  to.normalForce = from.normalForce;
+  to.shearForce = from.shearForce;
+  to.twistingMoment = from.twistingMoment;
+  to.bendingMoment = from.bendingMoment;
+  to.damage = from.damage;
+  to.failure = from.failure;
+  to.failureTime = from.failureTime;
+  to.failurePosition = from.failurePosition;
+  to.failureNormal = from.failureNormal;
+}
+} // namespace
+
 void BondStepState::save(const Bonds& b)
 {
-  normalForce = b.normalForce;
-  shearForce = b.shearForce;
-  twistingMoment = b.twistingMoment;
-  bendingMoment = b.bendingMoment;
-  damage = b.damage;
-  failure = b.failure;
-  failureTime = b.failureTime;
-  failurePosition = b.failurePosition;
-  failureNormal = b.failureNormal;
+  copyStepState(b, *this);
 }
 
 void BondStepState::restore(Bonds& b) const
@@ -87,15 +96,7 @@ void BondStepState::restore(Bonds& b) const
     throw std::logic_error("BondStepState::restore: " + std::to_string(failure.size()) +
                            " bonds saved, " + std::to_string(b.size()) + " in the model");
   }
-  b.normalForce = normalForce;
-  b.shearForce = shearForce;
-  b.twistingMoment = twistingMoment;
-  b.bendingMoment = bendingMoment;
-  b.damage = damage;
-  b.failure = failure;
-  b.failureTime = failureTime;
-  b.failurePosition = failurePosition;
-  b.failureNormal = failureNormal;
+  copyStepState(*this, b);
 }
 
 BondCounts countBonds(const Bonds& bonds)

@@ -105,9 +105,6 @@ Vec3 separation(const Domain& d, const Vec3& a, const Vec3& b) { return minimumI
 
 // kApart: the squared-distance rejection of pairs that do not touch (TouchingPair.h).
 
-/// (-0, -0, -0): what the gather adds for a pair without force (x + -0.0 is x).
-const Vec3 kNegativeZero(-0.0, -0.0, -0.0);
-
 /// a when c, else b, without a branch.
 inline const Vec3* chooseRow(bool c, const Vec3* a, const Vec3* b)
 {
@@ -171,20 +168,12 @@ inline Vec3 withSignFlipped(const Vec3& v, bool flip)
                                                 Vec3& sumForce, Vec3& sumTorque)
 {
   const double arm = row.arm[asJ ? 1 : 0]; // an indexed load: a branch was mispredicted
-  const std::uint64_t sign = static_cast<std::uint64_t>(asJ) << 63;
-  for (int c = 0; c < 3; ++c) {
-    double torque = arm * row.normalCrossFt[c];
-    if (rolling != nullptr) {
-      torque += withSignFlipped(*rolling, asJ)[c];
-    }
-    std::uint64_t bits;
-    std::memcpy(&bits, &row.force[c], sizeof bits);
-    bits ^= sign;
-    double force;
-    std::memcpy(&force, &bits, sizeof force);
-    sumForce[c] += force;
-    sumTorque[c] += torque;
+  Vec3 torque = arm * row.normalCrossFt;
+  if (rolling != nullptr) {
+    torque += withSignFlipped(*rolling, asJ);
   }
+  sumForce += withSignFlipped(row.force, asJ);
+  sumTorque += torque;
 }
 
 /// Pairs per block of the pair loop: the AVX2 path lists a block's touching pairs (on the
