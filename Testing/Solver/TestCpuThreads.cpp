@@ -1,10 +1,12 @@
 // The CPU backend's threads: how the pair loop and the gather share their work
-// (balancedRanges; CpuBackend.h), and that the result never depends on it: a pack whose
+// (balancedRanges, and ChunkClaims, with which a thread done with its range takes the
+// chunks left in the others'; CpuBackend.h), and that the result never depends on it: a pack whose
 // contacts all sit in its lower slots (where equal shares of the slots gave one thread
 // most of the work) ends bit for bit the same on 1, 2, 3 and 4 threads, and however its
 // steps are cut into runs (the next step's drift is done in the gather within a run).
 #include "backends/cpu/CpuBackend.h"
 
+#include "backends/cpu/WorkerTeam.h"
 #include "dem/Model.h"
 #include "dem/Simulation.h"
 #include "StateFixtures.h" // sameBits, firstDifference
@@ -17,6 +19,8 @@ using dem::statetest::sameBits;
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <chrono>
+#include <thread>
 #include <vector>
 
 using namespace dem;
@@ -110,6 +114,47 @@ TEST(CpuThreads, BalancedRangesSplitTheCostEvenly)
   EXPECT_EQ(bounds.back(), 6);
   balancedRanges(std::vector<std::uint32_t>(), 2, bounds);
   EXPECT_EQ(bounds, (std::vector<long>{ 0, 0, 0 }));
+}
+
+// Every chunk of a loop goes to exactly one thread, and a thread done with its own range
+// takes the chunks left in the others': here rank 0 is slow (it sleeps on each of its
+// chunks), and the other ranks claim the rest of its range while it sleeps.
+TEST(CpuThreads, ChunkClaimsGiveEachChunkOnceAndLetTheIdleTakeOver)
+{
+  WorkSplit split;
+  dem::WorkerTeam team;
+  for (int ranks : { 1, 2, 3, 4 }) {
+    const long chunks = 97;
+    const ChunkClaims claims = split.split(chunks * 8, 8, 1, ranks);
+    ASSERT_EQ(split.ranges.size(), static_cast<std::size_t>(ranks) + 1);
+    std::vector<int> claimedBy(static_cast<std::size_t>(chunks), -1);
+    std::vector<int> claimCount(static_cast<std::size_t>(chunks), 0);
+    team.run(ranks, [&](int rank) {
+      int visit = 0;
+      for (long c; (c = claims.claim(rank, visit)) >= 0;) {
+        claimedBy[static_cast<std::size_t>(c)] = rank; // each chunk written by its one claimant
+        claimCount[static_cast<std::size_t>(c)] += 1;
+        if (rank == 0 && ranks > 1) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+      }
+    });
+    for (long c = 0; c < chunks; ++c) {
+      EXPECT_EQ(claimCount[static_cast<std::size_t>(c)], 1) << ranks << " ranks, chunk " << c;
+    }
+    if (ranks > 1) {
+      // Rank 0's range: it took its first chunk, the others most of the rest.
+      const long end0 = split.ranges[1];
+      ASSERT_GT(end0, 4);
+      EXPECT_EQ(claimedBy[0], 0);
+      const long byOthers = std::count_if(claimedBy.begin() + 1, claimedBy.begin() + end0, [](int r) { return r != 0; });
+      EXPECT_GT(byOthers, (end0 - 1) / 2) << ranks << " ranks: of rank 0's " << end0 << " chunks";
+    }
+    // The claims of the next loop start again at the ranges' starts.
+    const ChunkClaims again = split.split(chunks * 8, 8, 1, ranks);
+    int visit = 0;
+    EXPECT_EQ(again.claim(0, visit), 0);
+  }
 }
 
 // The work of this pack sits in its lower slots; however the threads split it (ranges of

@@ -246,10 +246,19 @@ void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vect
   }
 }
 
-void WorkSplit::split(long count, long chunk, std::uint32_t unmeasured, int parts)
+ChunkClaims WorkSplit::split(long count, long chunk, std::uint32_t unmeasured, int parts)
 {
   cost.resize(static_cast<std::size_t>((count + chunk - 1) / chunk), static_cast<std::uint32_t>(chunk) * unmeasured);
   balancedRanges(cost, parts, ranges);
+  parts = std::max(parts, 1);
+  if (cursorCount_ < parts) {
+    cursors_ = std::make_unique<ChunkClaims::Cursor[]>(static_cast<std::size_t>(parts));
+    cursorCount_ = parts;
+  }
+  for (int part = 0; part < parts; ++part) {
+    cursors_[part].next.store(ranges[static_cast<std::size_t>(part)], std::memory_order_relaxed);
+  }
+  return ChunkClaims(cursors_.get(), ranges.data(), parts);
 }
 
 #if ROCKDEM_AVX2_KERNEL
@@ -739,18 +748,19 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
     }
     pairLive[k] = 0;
   };
-  // Each thread takes one contiguous range of blocks, of about equal work as the blocks'
+  // Each thread starts with one contiguous range of blocks, of about equal work as the blocks'
   // work at the last step weighs it (a block new since a rebuild counts its pairs as not
   // touching): equal shares of the pairs gave the thread holding the contact-rich part of
-  // a pack most of the work (WorkSplit).
+  // a pack most of the work (WorkSplit). A thread done with its range takes the blocks
+  // still unclaimed in the others' (ChunkClaims).
   const int parts = im.parallel ? im.threads : 1;
-  pairSplit_.split(pairs, kPairBlock, kPairCost, parts);
+  const ChunkClaims pairClaims = pairSplit_.split(pairs, kPairBlock, kPairCost, parts);
   std::uint32_t* const blockCost = pairSplit_.cost.data();
-  const long* const pairRanges = pairSplit_.ranges.data();
   // The loops capture by value (the arrays' addresses, the constants) and the two large
   // objects they use by reference (WorkerTeam::run).
   team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
-  for (long b = pairRanges[part]; b < pairRanges[part + 1]; ++b) {
+  int visit = 0;
+  for (long b; (b = pairClaims.claim(part, visit)) >= 0;) {
     const long blockEnd = std::min(pairs, (b + 1) * kPairBlock);
 #if ROCKDEM_AVX2_KERNEL
     if (simd) {
@@ -905,11 +915,10 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   const Vec3* const bondTorqueJ = im.bondTorqueJ.data();
   const std::uint8_t* const bondFailure = model_.bonds.failure.data();
   const std::uint8_t intact = static_cast<std::uint8_t>(BondFailure::Intact);
-  // Each thread takes one contiguous range of chunks of about equal work, as the pair loop
+  // Each thread starts with one contiguous range of chunks of about equal work, as the pair loop
   // takes its blocks (and, with driftNext, moves the particles it gathered).
-  gatherSplit_.split(count, kGatherChunk, kUnmeasuredParticleCost, parts);
+  const ChunkClaims gatherClaims = gatherSplit_.split(count, kGatherChunk, kUnmeasuredParticleCost, parts);
   std::uint32_t* const chunkCost = gatherSplit_.cost.data();
-  const long* const gatherRanges = gatherSplit_.ranges.data();
   // The particle arrays the gather writes, through raw pointers (as in the pair loop).
   Vec3* const movePosition = p.position.data();
   Vec3* const moveVelocity = p.velocity.data();
@@ -938,7 +947,8 @@ void CpuBackend::computeForces(bool incrementHistory, bool closingKick, bool dri
   GatherScratch* const gatherScratch = gatherScratch_.data();
   team_.run(parts, [=, &im, &p](int part) __attribute__((always_inline)) {
   bool rankStale = false; // this rank's drift made the list stale
-  for (long chunk = gatherRanges[part]; chunk < gatherRanges[part + 1]; ++chunk) {
+  int visit = 0;
+  for (long chunk; (chunk = gatherClaims.claim(part, visit)) >= 0;) {
     const long chunkBegin = chunk * kGatherChunk;
     const long chunkEnd = std::min(count, chunkBegin + kGatherChunk);
     const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
@@ -1134,10 +1144,10 @@ void CpuBackend::computeBondForces(bool incrementState)
     return;
   }
   const int parts = im.parallel ? im.threads : 1;
-  // Each thread takes one contiguous range of chunks of about equal time at the last step.
-  bondSplit_.split(count, kBondChunk, kUnmeasuredBondCost, parts);
+  // Each thread starts with one contiguous range of chunks of about equal time at the last
+  // step, then takes the chunks still unclaimed in the others' (ChunkClaims).
+  const ChunkClaims bondClaims = bondSplit_.split(count, kBondChunk, kUnmeasuredBondCost, parts);
   std::uint32_t* const chunkCost = bondSplit_.cost.data();
-  const long* const bondRanges = bondSplit_.ranges.data();
   // Four bonds at a time with AVX2 on a real step without periodic axes (IntactBond.h);
   // the scalar loop steps the rest: softening or damaged bonds, groups in which one breaks.
   [[maybe_unused]] const bool simd =
@@ -1199,7 +1209,8 @@ void CpuBackend::computeBondForces(bool incrementState)
       im.bondTorqueJ[k] *= share;
     }
   };
-  for (long chunk = bondRanges[part]; chunk < bondRanges[part + 1]; ++chunk) {
+  int visit = 0;
+  for (long chunk; (chunk = bondClaims.claim(part, visit)) >= 0;) {
     const std::chrono::steady_clock::time_point chunkStart = std::chrono::steady_clock::now();
     const long chunkEnd = std::min(count, (chunk + 1) * kBondChunk);
 #if ROCKDEM_AVX2_KERNEL

@@ -14,7 +14,8 @@
 //
 // Threads: the loops of a step run on a WorkerTeam (threads kept between loops, waiting
 // by a short spin, then asleep). The pair loop, the bond loop and the gather give each thread one range of
-// equal work, as the last step counted or timed it (WorkSplit below), and within one run() the gather also does
+// equal work, as the last step counted or timed it (WorkSplit below); a thread done with its range takes
+// the chunks still unclaimed in the others' (ChunkClaims below), and within one run() the gather also does
 // the next step's half kick and drift of the particles it has just gathered (the last step
 // of a run does not, so the model holds whole steps between runs). Neither changes a bit.
 #pragma once
@@ -25,7 +26,9 @@
 #include "dem/ContactLaws.h"
 #include "dem/Model.h"
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,14 +42,56 @@ namespace dem {
 /// bit of it).
 void balancedRanges(const std::vector<std::uint32_t>& cost, int parts, std::vector<long>& bounds);
 
+/// Hands out the chunks of one loop while it runs: thread p claims the chunks of its own
+/// range in order, and when its range is done, the chunks still unclaimed in the other
+/// ranges (p + 1, p + 2, ... round), so that a thread the machine slows down (a busy core,
+/// a virtual processor descheduled for a while) does not hold the others up at the join.
+/// Each chunk goes to exactly one thread, and each chunk's results are written once by
+/// the thread that claimed it: which thread that is never changes a bit. Copied by value
+/// into a loop (two pointers and a count).
+class ChunkClaims {
+public:
+  /// One cursor per range, each on a cache line of its own.
+  struct alignas(64) Cursor {
+    std::atomic<long> next{ 0 };
+  };
+  ChunkClaims(Cursor* cursors, const long* ranges, int parts)
+    : cursors_(cursors), ranges_(ranges), parts_(parts)
+  {
+  }
+  /// The next chunk for thread `part`, or -1 when every chunk has been claimed. `visit`
+  /// holds the thread's place between calls: 0 before its first.
+  long claim(int part, int& visit) const
+  {
+    for (; visit < parts_; ++visit) {
+      const int range = (part + visit) % parts_;
+      const long chunk = cursors_[range].next.fetch_add(1, std::memory_order_relaxed);
+      if (chunk < ranges_[range + 1]) {
+        return chunk;
+      }
+    }
+    return -1;
+  }
+
+private:
+  Cursor* cursors_;
+  const long* ranges_;
+  int parts_;
+};
+
 /// One loop's split among the threads: the cost of each chunk of its items at the chunk's
 /// last evaluation (counted or timed, CpuBackend.cpp) and each thread's range of chunks.
 struct WorkSplit {
   std::vector<std::uint32_t> cost;
-  std::vector<long> ranges; // thread p takes the chunks [ranges[p], ranges[p + 1])
+  std::vector<long> ranges; // thread p starts with the chunks [ranges[p], ranges[p + 1])
   /// Sizes `cost` for `count` items in chunks of `chunk` (a chunk not evaluated yet costs
-  /// chunk x `unmeasured`) and splits it into `parts` ranges (balancedRanges).
-  void split(long count, long chunk, std::uint32_t unmeasured, int parts);
+  /// chunk x `unmeasured`), splits it into `parts` ranges (balancedRanges) and returns the
+  /// claims of the loop that runs next: each range's cursor at its first chunk.
+  ChunkClaims split(long count, long chunk, std::uint32_t unmeasured, int parts);
+
+private:
+  std::unique_ptr<ChunkClaims::Cursor[]> cursors_;
+  int cursorCount_ = 0;
 };
 
 class CpuBackend final : public Backend {
