@@ -8,6 +8,7 @@
 #include "dem/Errors.h"
 #include "dem/LoadTest.h"
 #include "dem/Model.h"
+#include "dem/Overlaps.h"
 #include "dem/Pack.h"
 #include "dem/Simulation.h"
 #include "dem/StageTime.h"
@@ -1124,7 +1125,11 @@ int vtkDEMLoadTest::RequestData(
   }
   this->Finished = in.FinishFrame >= 0 ? (in.Frame >= in.FinishFrame ? 1 : 0)
                                          : (this->NumberOfFrames > 0 && in.Frame >= this->LastFrame() ? 1 : 0);
-  rockdem::ModelToMultiBlock(in.Model, output);
+  // The particles' stresses from the running solver's own lists: those a Simulation made
+  // from the frame's state shows (a saved and reloaded frame), without building one.
+  const std::vector<dem::StressTensor> stresses =
+    dem::particleStresses(in.Model, in.Simulation->freshInteractionForces());
+  rockdem::ModelToMultiBlock(in.Model, output, &stresses);
   if (auto* particles = vtkPolyData::SafeDownCast(output->GetBlock(0)))
   {
     // A running model is coloured by how far its particles moved (the default colouring of
@@ -1137,7 +1142,7 @@ int vtkDEMLoadTest::RequestData(
   const dem::Diagnostics d = in.Simulation->diagnostics();
   this->CriticalTimestep = in.Simulation->criticalTimestep();
   this->Timestep = in.Simulation->timestep();
-  this->CurrentPorosity = dem::currentPorosity(in.Model);
+  this->CurrentPorosity = dem::currentPorosity(in.Model, in.Simulation->overlaps().volume);
   const dem::BondCounts bondCounts = dem::countBonds(in.Model.bonds);
   this->NumberOfBonds = static_cast<vtkIdType>(bondCounts.installed);
   this->NumberOfBrokenBonds = static_cast<vtkIdType>(bondCounts.broken);

@@ -257,7 +257,8 @@ void LoadTestFromFieldData(vtkFieldData* fd, double settlingDamping, dem::LoadTe
 }
 } // namespace
 
-void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
+void ParticlesToPolyData(
+  const dem::Model& model, vtkPolyData* output, const std::vector<dem::StressTensor>* stresses)
 {
   const dem::Particles& p = model.particles;
   const auto n = static_cast<vtkIdType>(p.size());
@@ -315,7 +316,13 @@ void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output)
 
   // Derived: the stress each particle carries (dem/ParticleStress.h), evaluated from the
   // model state, so a reloaded model shows the same values (not read back).
-  const std::vector<dem::StressTensor> stress = dem::particleStresses(model);
+  const std::vector<dem::StressTensor> stress =
+    stresses != nullptr ? *stresses : dem::particleStresses(model);
+  if (stress.size() != p.size())
+  {
+    throw dem::InputError("ParticlesToPolyData: " + std::to_string(stress.size()) +
+      " particle stresses given for " + std::to_string(p.size()) + " particles.");
+  }
   const bool planar = model.domain.section2D;
   vtkNew<vtkDoubleArray> tensor;
   tensor->SetName("Stress");
@@ -548,11 +555,12 @@ void DomainBoxToPolyData(const dem::Domain& domain, vtkPolyData* output)
   output->SetLines(lines);
 }
 
-void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output)
+void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output,
+  const std::vector<dem::StressTensor>* stresses)
 {
   output->Initialize();
   vtkNew<vtkPolyData> particles;
-  ParticlesToPolyData(model, particles);
+  ParticlesToPolyData(model, particles, stresses);
   vtkNew<vtkPolyData> walls;
   WallsToPolyData(model, walls);
   vtkNew<vtkPolyData> contacts;

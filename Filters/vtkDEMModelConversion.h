@@ -29,8 +29,10 @@
 #define vtkDEMModelConversion_h
 
 #include "dem/Model.h"
+#include "dem/ParticleStress.h"
 
 #include <string>
+#include <vector>
 
 class vtkMultiBlockDataSet;
 class vtkPolyData;
@@ -49,15 +51,21 @@ constexpr int WallStateComponents = 11;
 /// Version of the in-memory VTK layout (field data "RockDEMModelVersion").
 constexpr int ModelLayoutVersion = 1;
 
-/// Writes the model into `output` (which is cleared first).
-void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output);
+/// Writes the model into `output` (which is cleared first). The particles' Stress,
+/// MeanStress and VonMisesStress are `stresses` (slot order) when given: those of
+/// dem::particleStresses for the model, which a running stage has at hand
+/// (dem::Simulation::freshInteractionForces); otherwise they are evaluated here.
+void ModelToMultiBlock(const dem::Model& model, vtkMultiBlockDataSet* output,
+  const std::vector<dem::StressTensor>* stresses = nullptr);
 
 /// Reads a model written by ModelToMultiBlock. Throws dem::InputError when `input` is
 /// not a RockDEM model (missing block or array, inconsistent sizes).
 dem::Model MultiBlockToModel(vtkMultiBlockDataSet* input);
 
-/// The particles as polydata (points, vertices, point arrays), as in the Particles block.
-void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output);
+/// The particles as polydata (points, vertices, point arrays), as in the Particles block
+/// (`stresses` as in ModelToMultiBlock).
+void ParticlesToPolyData(const dem::Model& model, vtkPolyData* output,
+  const std::vector<dem::StressTensor>* stresses = nullptr);
 
 /// The active walls as quads (for display), as in the Walls block.
 void WallsToPolyData(const dem::Model& model, vtkPolyData* output);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,28 @@ double sharedVolume(const Domain& domain, double a, double b, double distance)
   return std::max(0.0, kPi * h * h * (d * d + 2.0 * d * (a + b) - 3.0 * (a - b) * (a - b)) / (12.0 * d));
 }
 
+namespace {
+/// Adds the pair (i, j), i < j, to the report when it overlaps. The reports of both
+/// measureOverlaps call this for each pair in (i, j) order: the same sums, the same bits.
+void addIfOverlapping(OverlapReport& report, const Model& model, std::size_t i, std::size_t j)
+{
+  const Particles& p = model.particles;
+  const double distance = minimumImage(model.domain, p.position[i], p.position[j]).norm();
+  const double overlap = p.radius[i] + p.radius[j] - distance;
+  if (!(overlap > 0.0)) {
+    return;
+  }
+  ++report.pairs;
+  report.volume += sharedVolume(model.domain, p.radius[i], p.radius[j], distance);
+  if (overlap > report.largest) {
+    report.largest = overlap;
+    report.largestRelative = overlap / std::min(p.radius[i], p.radius[j]);
+    report.idA = p.id[i];
+    report.idB = p.id[j];
+  }
+}
+} // namespace
+
 OverlapReport measureOverlaps(const Model& model)
 {
   OverlapReport report;
@@ -55,23 +78,31 @@ OverlapReport measureOverlaps(const Model& model)
     grids.neighboursWithin(p.position[i], p.radius[i], 0.0, i, keys);
     std::sort(keys.begin(), keys.end()); // slot order: the sums do not depend on the grid
     for (std::size_t j : keys) {
-      if (j <= i) {
-        continue; // each pair once
-      }
-      const double distance = grids.separation(p.position[i], p.position[j]).norm();
-      const double overlap = p.radius[i] + p.radius[j] - distance;
-      if (!(overlap > 0.0)) {
-        continue;
-      }
-      ++report.pairs;
-      report.volume += sharedVolume(model.domain, p.radius[i], p.radius[j], distance);
-      if (overlap > report.largest) {
-        report.largest = overlap;
-        report.largestRelative = overlap / std::min(p.radius[i], p.radius[j]);
-        report.idA = p.id[i];
-        report.idB = p.id[j];
+      if (j > i) { // each pair once
+        addIfOverlapping(report, model, i, j);
       }
     }
+  }
+  return report;
+}
+
+OverlapReport measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI,
+                              const std::vector<std::uint32_t>& pairJ)
+{
+  if (pairI.size() != pairJ.size()) {
+    throw std::logic_error("measureOverlaps: the candidate lists differ in length");
+  }
+  OverlapReport report;
+  const std::size_t n = model.particles.size();
+  for (std::size_t k = 0; k < pairI.size(); ++k) {
+    const std::uint32_t i = pairI[k];
+    const std::uint32_t j = pairJ[k];
+    const bool ordered = i < j && j < n &&
+      (k == 0 || pairI[k - 1] < i || (pairI[k - 1] == i && pairJ[k - 1] < j));
+    if (!ordered) {
+      throw std::logic_error("measureOverlaps: the candidate pairs are not sorted by (i, j) with i < j");
+    }
+    addIfOverlapping(report, model, i, j);
   }
   return report;
 }

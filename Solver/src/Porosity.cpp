@@ -84,11 +84,19 @@ double currentPorosity(const Model& model)
   // reach outside the box, the solid volume can still exceed the occupied volume: the
   // porosity is then 0, never negative (DEM Model From Points warns about the overlaps).
   const PorosityMeter meter(model);
+  if (!(meter.occupiedVolume() > 0.0)) {
+    return 1.0;
+  }
+  return currentPorosity(model, measureOverlaps(model).volume);
+}
+
+double currentPorosity(const Model& model, double shared)
+{
+  const PorosityMeter meter(model);
   const double occupied = meter.occupiedVolume();
   if (!(occupied > 0.0)) {
     return 1.0;
   }
-  const double shared = measureOverlaps(model).volume;
   if (shared == 0.0) {
     return std::max(0.0, meter.porosity());
   }

@@ -461,9 +461,28 @@ TestMeasurements Simulation::measurements() const
   return m;
 }
 
-InteractionForces Simulation::interactionForces() const
+InteractionForces Simulation::interactionForces() const { return interactionForces(backend_->sync()); }
+
+InteractionForces Simulation::freshInteractionForces()
+{
+  InteractionForces out;
+  if (backend_->evaluateFresh([&](const ContactState& state) { out = interactionForces(state); })) {
+    return out;
+  }
+  backend_->sync();
+  Model copy = model_; // the Simulation may set up walls and the timestep on its model
+  const Simulation fresh(copy);
+  return fresh.interactionForces();
+}
+
+OverlapReport Simulation::overlaps()
 {
   const ContactState& im = backend_->sync();
+  return measureOverlaps(model_, im.pairI, im.pairJ);
+}
+
+InteractionForces Simulation::interactionForces(const ContactState& im) const
+{
   const Particles& p = model_.particles;
   const Domain& d = model_.domain;
   InteractionForces out;

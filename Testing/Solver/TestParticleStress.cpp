@@ -4,13 +4,17 @@
 // particle stresses is the specimen's Love-Weber tensor the press reports
 // (Simulation::measurements), mid-test with contacts, bonds (some broken) and walls; the
 // stresses of a model are a function of its state: a saved-and-reloaded model gives the
-// same values bit for bit.
+// same values bit for bit, and a running solver gives them without building a second one
+// (Simulation::freshInteractionForces) and steps on as if it had not been asked.
 #include "dem/Cement.h"
 #include "dem/LoadTest.h"
+#include "dem/Overlaps.h"
+#include "dem/Pack.h"
 #include "dem/ParticleStress.h"
 #include "dem/Simulation.h"
 #include "dem/StateFile.h"
 #include "Specimens.h"
+#include "StateFixtures.h"
 
 #include <gtest/gtest.h>
 
@@ -156,4 +160,74 @@ TEST(ParticleStress, ReloadedModelHasTheSameStressesBitForBit)
   const std::vector<StressTensor> after = particleStresses(reloaded);
   ASSERT_EQ(before.size(), after.size());
   EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(StressTensor)), 0);
+}
+
+namespace {
+bool sameForces(const InteractionForces& a, const InteractionForces& b)
+{
+  using statetest::sameBits;
+  return sameBits(a.slotA, b.slotA) && sameBits(a.slotB, b.slotB) && sameBits(a.force, b.force) &&
+    sameBits(a.armA, b.armA) && sameBits(a.armB, b.armB);
+}
+} // namespace
+
+// The per-particle stresses of a running stage come from its own solver's lists
+// (freshInteractionForces: every contact evaluated once with no time increment, then the
+// solver's state put back): bit for bit those of a Simulation made from the same state
+// (what a saved and reloaded frame shows), with contacts, rolling springs, bonds (some
+// broken, some softening), rigid walls and a membrane; the solver, asked twice on the way,
+// then steps exactly as an identical one that was never asked (particles, springs, bonds,
+// walls, test history), and reports the same last-step forces and diagnostics meanwhile.
+// Its overlaps (Current Porosity), measured on its neighbour list, are the search's.
+TEST(ParticleStress, RunningSolverGivesTheFreshStressesAndStepsOnUnchanged)
+{
+  for (const char* name : { "settling", "cemented", "triaxial", "membrane" }) {
+    SCOPED_TRACE(name);
+    Model asked = statetest::byName(name);
+    asked.solver.threads = 2;
+    asked.solver.parallelThreshold = 1; // the threaded path for the one asked
+    Model never = statetest::byName(name);
+    Simulation a(asked);
+    Simulation b(never);
+    a.advance(5);
+    b.advance(5);
+
+    const InteractionForces fresh = a.freshInteractionForces();
+    Model copy = asked;
+    const Simulation rebuilt(copy);
+    const InteractionForces reference = rebuilt.interactionForces();
+    ASSERT_GT(reference.size(), 0u);
+    EXPECT_TRUE(sameForces(fresh, reference)) << fresh.size() << " against " << reference.size() << " forces";
+    const std::vector<StressTensor> running = particleStresses(asked, fresh);
+    const std::vector<StressTensor> fromState = particleStresses(asked);
+    EXPECT_TRUE(statetest::sameBits(running, fromState));
+
+    // The overlaps (Current Porosity) from the solver's neighbour list: the search's, bit
+    // for bit.
+    const OverlapReport listed = a.overlaps();
+    const OverlapReport searched = measureOverlaps(asked);
+    EXPECT_GT(searched.pairs, 0u);
+    EXPECT_EQ(listed.pairs, searched.pairs);
+    EXPECT_EQ(std::memcmp(&listed.volume, &searched.volume, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&listed.largest, &searched.largest, sizeof(double)), 0);
+    EXPECT_EQ(listed.idA, searched.idA);
+    EXPECT_EQ(listed.idB, searched.idB);
+    const double porosity = currentPorosity(asked, listed.volume);
+    const double searchedPorosity = currentPorosity(asked);
+    EXPECT_EQ(std::memcmp(&porosity, &searchedPorosity, sizeof(double)), 0);
+
+    // Meanwhile the solver reports the last step's forces and diagnostics, as before.
+    EXPECT_TRUE(sameForces(a.interactionForces(), b.interactionForces()));
+    const Diagnostics da = a.diagnostics();
+    const Diagnostics db = b.diagnostics();
+    EXPECT_EQ(std::memcmp(&da.unbalancedForceRatio, &db.unbalancedForceRatio, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&da.kineticEnergy, &db.kineticEnergy, sizeof(double)), 0);
+    EXPECT_EQ(da.contacts, db.contacts);
+
+    a.advance(150);
+    (void)a.freshInteractionForces();
+    a.advance(150);
+    b.advance(300);
+    EXPECT_EQ(statetest::firstDifference(asked, never), "") << "after 300 more steps";
+  }
 }

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace dem {
@@ -66,6 +67,18 @@ public:
   /// energy, in the contact state's dampingWork and breakEnergy (sync() brings them). Off
   /// by default: it costs a write per particle per step.
   virtual void countDissipation(bool on) = 0;
+
+  /// Evaluates the contact, bond and wall forces of the present state once, with no time
+  /// increment, as a backend newly made from the model evaluates them at its start; passes
+  /// the contact state so evaluated to `read`; then puts back everything the evaluation
+  /// changed, so that the next step and the diagnostics see the state of the last step.
+  /// False, without calling `read`, where the backend cannot (the driver then makes a
+  /// backend from a copy of the model: Simulation::freshInteractionForces).
+  virtual bool evaluateFresh(const std::function<void(const ContactState&)>& read)
+  {
+    (void)read;
+    return false;
+  }
 
   /// What the backend holds in device memory (zero for the CPU).
   virtual DeviceMemory deviceMemory() const { return {}; }

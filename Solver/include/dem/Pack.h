@@ -187,5 +187,8 @@ double largestOverlap(const Model& model);
 /// it extends only up to the top of the highest particle (a settled pack is measured to
 /// its top, not to the box ceiling). 2D: areas of discs over the section area.
 double currentPorosity(const Model& model);
+/// The same, with the volume the overlapping pairs share given (m^3, measureOverlaps's
+/// volume: a running solver measures it on its neighbour list, Simulation::overlaps).
+double currentPorosity(const Model& model, double sharedVolume);
 
 } // namespace dem

@@ -67,6 +67,7 @@ void validate(const SolverSettings& settings);
 void resetWalls(Model& model);
 
 struct InteractionForces;
+struct OverlapReport;
 
 /// Where a Simulation steps: the CPU backend, or the GPU (Vulkan) backend when a device
 /// can run the model (else the CPU, and path() says why).
@@ -134,8 +135,19 @@ public:
   /// contacts), each with the arms from the centres to its contact point, for the
   /// per-particle stress (dem/ParticleStress.h).
   InteractionForces interactionForces() const;
+  /// The forces a Simulation newly made from the model's present state reports (its
+  /// interactionForces(): every contact evaluated once with no time increment), which
+  /// particleStresses(model) sums: a running stage shows the per-particle stresses that
+  /// the state, saved and read back, shows, bit for bit. The CPU backend evaluates them on
+  /// its own lists and puts its state back; otherwise a Simulation is made from a copy of
+  /// the model. The steps that follow are those without the call, bit for bit.
+  InteractionForces freshInteractionForces();
+  /// The overlapping pairs of the present state (dem::measureOverlaps, bit for bit),
+  /// measured on the solver's neighbour list, which holds every pair that can touch.
+  OverlapReport overlaps();
 
 private:
+  InteractionForces interactionForces(const ContactState& state) const;
   std::int64_t stepsToNextSample() const;
   void sampleLoadTest(std::int64_t steps);
   double contactForceMagnitude(const ContactState& state, std::size_t particle) const;

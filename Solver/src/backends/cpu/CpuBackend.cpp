@@ -312,23 +312,89 @@ CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double ti
   } else {
     // Resumed: the stored forces, torques, springs and wall reactions are those of the
     // last step and must stay bit for bit. Evaluate the contacts once for the
-    // diagnostics only, then put the stored state back.
-    const std::vector<Vec3> force = model.particles.force;
-    const std::vector<Vec3> torque = model.particles.torque;
-    const std::vector<Wall> walls = model.walls;
-    const ContactState saved = state_;
-    const Bonds bonds = model.bonds;
-    computeForces(false, false);
-    model.bonds = bonds;
-    model.particles.force = force;
-    model.particles.torque = torque;
-    model.walls = walls;
-    state_.pairSpring = saved.pairSpring;
-    state_.pairRolling = saved.pairRolling;
-    state_.pairLive = saved.pairLive;
-    state_.wallSpring = saved.wallSpring;
-    state_.wallRolling = saved.wallRolling;
+    // diagnostics only, keeping the stored state.
+    evaluateKeepingStepState();
   }
+}
+
+void CpuBackend::evaluateKeepingStepState()
+{
+  // An evaluation with no time increment changes, of what the next step reads: the net
+  // forces and torques, the wall reactions, the springs (the Coulomb limit at the
+  // evaluated normal force) and which pairs hold state. Not the bonds (no increment, no
+  // failure test) and not the positions and velocities.
+  ContactState& im = state_;
+  Particles& p = model_.particles;
+  StepStateCopy& c = stepStateCopy_;
+  c.force = p.force;
+  c.torque = p.torque;
+  c.walls = model_.walls;
+  c.pairSpring = im.pairSpring;
+  c.pairRolling = im.pairRolling;
+  c.pairLive = im.pairLive;
+  c.wallSpring = im.wallSpring;
+  c.wallRolling = im.wallRolling;
+  const bool drifted = drifted_;
+  const bool driftedStale = driftedStale_;
+  computeForces(false, false);
+  p.force.swap(c.force);
+  p.torque.swap(c.torque);
+  model_.walls.swap(c.walls);
+  im.pairSpring.swap(c.pairSpring);
+  im.pairRolling.swap(c.pairRolling);
+  im.pairLive.swap(c.pairLive);
+  im.wallSpring.swap(c.wallSpring);
+  im.wallRolling.swap(c.wallRolling);
+  drifted_ = drifted;
+  driftedStale_ = driftedStale;
+}
+
+bool CpuBackend::evaluateFresh(const std::function<void(const ContactState&)>& read)
+{
+  // Besides the step state, the evaluation rewrites the results of the contacts: those
+  // that acted at the last step are copied (a pair's row is read only while it has a
+  // normal force), the wall entries and the particles' undamped forces whole.
+  ContactState& im = state_;
+  ActingCopy& a = actingCopy_;
+  const bool rolling = !im.pairRollingTorque.empty();
+  a.pair.clear();
+  a.row.clear();
+  a.pairNormal.clear();
+  a.rollingTorque.clear();
+  for (std::size_t k = 0; k < im.pairNormal.size(); ++k) {
+    if (im.pairNormal[k] != 0.0) {
+      a.pair.push_back(static_cast<std::uint32_t>(k));
+      a.row.push_back(im.pairResult[k]);
+      a.pairNormal.push_back(im.pairNormal[k]);
+      if (rolling) {
+        a.rollingTorque.push_back(im.pairRollingTorque[k]);
+      }
+    }
+  }
+  a.undampedForce = im.undampedForce;
+  a.wallForce = im.wallForce;
+  a.wallNormal = im.wallNormal;
+  a.wallStiffness = im.wallStiffness;
+  a.wallElastic = im.wallElastic;
+  a.wallTouching = im.wallTouching;
+  evaluateKeepingStepState();
+  read(im);
+  std::fill(im.pairNormal.begin(), im.pairNormal.end(), 0.0);
+  for (std::size_t q = 0; q < a.pair.size(); ++q) {
+    const std::uint32_t k = a.pair[q];
+    im.pairResult[k] = a.row[q];
+    im.pairNormal[k] = a.pairNormal[q];
+    if (rolling) {
+      im.pairRollingTorque[k] = a.rollingTorque[q];
+    }
+  }
+  im.undampedForce.swap(a.undampedForce);
+  im.wallForce.swap(a.wallForce);
+  im.wallNormal.swap(a.wallNormal);
+  im.wallStiffness.swap(a.wallStiffness);
+  im.wallElastic.swap(a.wallElastic);
+  im.wallTouching.swap(a.wallTouching);
+  return true;
 }
 
 

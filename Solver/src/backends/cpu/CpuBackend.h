@@ -106,6 +106,7 @@ public:
   const ContactState& sync() override { return state_; }
   StabilityReport stability() override;
   void countDissipation(bool on) override;
+  bool evaluateFresh(const std::function<void(const ContactState&)>& read) override;
 
   /// The contact state, for a backend that starts from the CPU's (the Vulkan backend).
   ContactState& state() { return state_; }
@@ -119,6 +120,7 @@ private:
   void computeBondForces(bool incrementState);
   void computeForces(bool incrementHistory, bool closingKick, bool driftNext = false);
   void step(bool last);
+  void evaluateKeepingStepState();
 
   Model& model_;
   ContactModel contactModel_;
@@ -152,6 +154,23 @@ private:
     std::vector<Vec3> force, torque;
   };
   std::vector<GatherScratch> gatherScratch_;
+  // What an evaluation with no time increment changes and the next step reads
+  // (evaluateKeepingStepState), and the rows of the contacts that acted before it
+  // (evaluateFresh): kept between calls to reuse the memory.
+  struct StepStateCopy {
+    std::vector<Vec3> force, torque, pairSpring, pairRolling, wallSpring, wallRolling;
+    std::vector<std::uint8_t> pairLive;
+    std::vector<Wall> walls;
+  };
+  struct ActingCopy {
+    std::vector<Vec3> undampedForce, wallForce, rollingTorque;
+    std::vector<double> wallNormal, wallStiffness, wallElastic, pairNormal;
+    std::vector<std::uint8_t> wallTouching;
+    std::vector<std::uint32_t> pair; // the pairs with a normal force
+    std::vector<PairResult> row;
+  };
+  StepStateCopy stepStateCopy_;
+  ActingCopy actingCopy_;
 };
 
 } // namespace dem
