@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -86,25 +85,26 @@ OverlapReport measureOverlaps(const Model& model)
   return report;
 }
 
-OverlapReport measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI,
-                              const std::vector<std::uint32_t>& pairJ)
+bool measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI,
+                     const std::vector<std::uint32_t>& pairJ, OverlapReport& out)
 {
+  const std::size_t n = model.particles.size();
   if (pairI.size() != pairJ.size()) {
-    throw std::logic_error("measureOverlaps: the candidate lists differ in length");
+    return false;
+  }
+  for (std::size_t k = 0; k < pairI.size(); ++k) {
+    const bool ordered = pairI[k] < pairJ[k] && pairJ[k] < n &&
+      (k == 0 || pairI[k - 1] < pairI[k] || (pairI[k - 1] == pairI[k] && pairJ[k - 1] < pairJ[k]));
+    if (!ordered) {
+      return false;
+    }
   }
   OverlapReport report;
-  const std::size_t n = model.particles.size();
   for (std::size_t k = 0; k < pairI.size(); ++k) {
-    const std::uint32_t i = pairI[k];
-    const std::uint32_t j = pairJ[k];
-    const bool ordered = i < j && j < n &&
-      (k == 0 || pairI[k - 1] < i || (pairI[k - 1] == i && pairJ[k - 1] < j));
-    if (!ordered) {
-      throw std::logic_error("measureOverlaps: the candidate pairs are not sorted by (i, j) with i < j");
-    }
-    addIfOverlapping(report, model, i, j);
+    addIfOverlapping(report, model, pairI[k], pairJ[k]);
   }
-  return report;
+  out = report;
+  return true;
 }
 
 void requireDistinctCentres(const Domain& domain, const Particles& particles)

@@ -465,8 +465,10 @@ InteractionForces Simulation::interactionForces() const { return interactionForc
 
 InteractionForces Simulation::freshInteractionForces()
 {
+  // After an instability the model holds the last good state, the backend the state it
+  // stopped in: then from a copy of the model.
   InteractionForces out;
-  if (backend_->evaluateFresh([&](const ContactState& state) { out = interactionForces(state); })) {
+  if (!broken_ && backend_->evaluateFresh([&](const ContactState& state) { out = interactionForces(state); })) {
     return out;
   }
   backend_->sync();
@@ -477,8 +479,15 @@ InteractionForces Simulation::freshInteractionForces()
 
 OverlapReport Simulation::overlaps()
 {
+  if (broken_) {
+    return measureOverlaps(model_); // the lists are those of the state the run stopped in
+  }
   const ContactState& im = backend_->sync();
-  return measureOverlaps(model_, im.pairI, im.pairJ);
+  OverlapReport report;
+  if (!measureOverlaps(model_, im.pairI, im.pairJ, report)) {
+    report = measureOverlaps(model_); // a list not sorted by (i, j): the search's order
+  }
+  return report;
 }
 
 InteractionForces Simulation::interactionForces(const ContactState& im) const

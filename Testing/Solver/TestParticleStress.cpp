@@ -10,6 +10,7 @@
 #include "dem/LoadTest.h"
 #include "dem/Overlaps.h"
 #include "dem/Pack.h"
+#include "dem/Random.h"
 #include "dem/ParticleStress.h"
 #include "dem/Simulation.h"
 #include "dem/StateFile.h"
@@ -212,6 +213,14 @@ TEST(ParticleStress, RunningSolverGivesTheFreshStressesAndStepsOnUnchanged)
     EXPECT_EQ(std::memcmp(&listed.largest, &searched.largest, sizeof(double)), 0);
     EXPECT_EQ(listed.idA, searched.idA);
     EXPECT_EQ(listed.idB, searched.idB);
+    // A list out of (i, j) order is refused (the solver then searches).
+    if (reference.size() > 1) {
+      OverlapReport refused;
+      refused.pairs = 7;
+      EXPECT_FALSE(measureOverlaps(asked, { 1, 0 }, { 2, 3 }, refused));
+      EXPECT_FALSE(measureOverlaps(asked, { 2 }, { 1 }, refused));
+      EXPECT_EQ(refused.pairs, 7u);
+    }
     const double porosity = currentPorosity(asked, listed.volume);
     const double searchedPorosity = currentPorosity(asked);
     EXPECT_EQ(std::memcmp(&porosity, &searchedPorosity, sizeof(double)), 0);
@@ -230,4 +239,43 @@ TEST(ParticleStress, RunningSolverGivesTheFreshStressesAndStepsOnUnchanged)
     b.advance(300);
     EXPECT_EQ(statetest::firstDifference(asked, never), "") << "after 300 more steps";
   }
+}
+
+// After an instability the model holds the last good state and the solver's lists the
+// state it stopped in: the stresses and overlaps a frame shows then are those of the last
+// good state (a solver made from it; a search), every value finite.
+TEST(ParticleStress, AfterAnInstabilityTheFrameShowsTheLastGoodState)
+{
+  Model m = dem::testing::specimen(300, 0.012, 0.0006, 0.0009, 4);
+  dem::testing::consolidate(m, 2e4); // contacts with forces in the last good state
+  m.solver.allowUnsafeTimestep = true;
+  m.solver.settlingDamping = 0.0;
+  m.solver.requestedTimestep = 5.0 * criticalTimestep(m, m.solver.contactLaw);
+  Random shake(7);
+  for (Vec3& v : m.particles.velocity) {
+    v += 0.2 * Vec3(shake.uniform() - 0.5, shake.uniform() - 0.5, shake.uniform() - 0.5);
+  }
+  Simulation unstable(m);
+  EXPECT_THROW(
+    {
+      for (int k = 0; k < 100; ++k) {
+        unstable.advance(100);
+      }
+    },
+    InstabilityError);
+  const InteractionForces shown = unstable.freshInteractionForces();
+  Model copy = m;
+  const Simulation rebuilt(copy);
+  const InteractionForces reference = rebuilt.interactionForces();
+  ASSERT_GT(reference.size(), 0u);
+  EXPECT_TRUE(sameForces(shown, reference));
+  for (const StressTensor& t : particleStresses(m, shown)) {
+    for (double c : t) {
+      ASSERT_TRUE(std::isfinite(c));
+    }
+  }
+  const OverlapReport listed = unstable.overlaps();
+  const OverlapReport searched = measureOverlaps(m);
+  EXPECT_EQ(listed.pairs, searched.pairs);
+  EXPECT_EQ(std::memcmp(&listed.volume, &searched.volume, sizeof(double)), 0);
 }

@@ -9,6 +9,7 @@
 #include "backends/cpu/CpuBackend.h"
 #include "backends/vulkan/VulkanBackend.h"
 #include "dem/Cement.h"
+#include "dem/Overlaps.h"
 #include "dem/ParticleStress.h"
 #include "dem/Specimen.h"
 #include "dem/StateFile.h"
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <cmath>
 #include <string>
@@ -66,6 +68,22 @@ std::string cpuGpuDifference(const Model& start, const std::vector<std::int64_t>
                 statetest::sameBits(fa.force, fb.force) && statetest::sameBits(fa.armA, fb.armA) &&
                 statetest::sameBits(fa.armB, fb.armB))
       << "interaction forces (the per-particle stress) differ";
+    // A frame's stresses and porosity (DEM Load Test): the GPU run's, from a solver made
+    // from its state, are the CPU run's, from its own lists; the overlaps from the
+    // device's neighbour list are the search's.
+    const InteractionForces ga = a.freshInteractionForces();
+    const InteractionForces gb = b.freshInteractionForces();
+    EXPECT_TRUE(statetest::sameBits(ga.slotA, gb.slotA) && statetest::sameBits(ga.slotB, gb.slotB) &&
+                statetest::sameBits(ga.force, gb.force) && statetest::sameBits(ga.armA, gb.armA) &&
+                statetest::sameBits(ga.armB, gb.armB))
+      << "the forces of a solver made from the state differ";
+    const OverlapReport oa = a.overlaps();
+    const OverlapReport ob = b.overlaps();
+    const OverlapReport searched = measureOverlaps(gpu);
+    EXPECT_EQ(oa.pairs, searched.pairs);
+    EXPECT_EQ(ob.pairs, searched.pairs);
+    EXPECT_EQ(std::memcmp(&ob.volume, &searched.volume, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&oa.volume, &searched.volume, sizeof(double)), 0);
   }
   if (cpuEnd) {
     *cpuEnd = cpu;

@@ -33,11 +33,12 @@ double sharedVolume(const Domain& domain, double a, double b, double distance);
 
 /// Finds every overlapping pair (one cell-grid search, O(n)).
 OverlapReport measureOverlaps(const Model& model);
-/// The same report, bit for bit, from candidate pairs that include every overlapping pair,
-/// sorted by (i, j) with i < j: a solver's neighbour list (Simulation::overlaps), without a
-/// search. std::logic_error when the lists are not so sorted.
-OverlapReport measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI,
-                              const std::vector<std::uint32_t>& pairJ);
+/// The same report, bit for bit, into `out` from candidate pairs that include every
+/// overlapping pair, sorted by (i, j) with i < j: a solver's neighbour list
+/// (Simulation::overlaps), without a search. False, `out` unchanged, when the lists are not
+/// so sorted.
+bool measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI,
+                     const std::vector<std::uint32_t>& pairJ, OverlapReport& out);
 
 /// Throws InputError when two particles have exactly the same centre (after wrapping into
 /// the box on periodic axes; z does not count in a 2D section): such a pair has no contact

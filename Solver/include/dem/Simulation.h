@@ -140,10 +140,12 @@ public:
   /// particleStresses(model) sums: a running stage shows the per-particle stresses that
   /// the state, saved and read back, shows, bit for bit. The CPU backend evaluates them on
   /// its own lists and puts its state back; otherwise a Simulation is made from a copy of
-  /// the model. The steps that follow are those without the call, bit for bit.
+  /// the model (and after an instability, whose last good state the model holds). The
+  /// steps that follow are those without the call, bit for bit.
   InteractionForces freshInteractionForces();
   /// The overlapping pairs of the present state (dem::measureOverlaps, bit for bit),
-  /// measured on the solver's neighbour list, which holds every pair that can touch.
+  /// measured on the solver's neighbour list, which holds every pair that can touch (by a
+  /// search where the list is not sorted by (i, j)).
   OverlapReport overlaps();
 
 private:
