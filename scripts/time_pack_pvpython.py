@@ -1,17 +1,18 @@
 """Times RockDEM on a pack file through the user's path, for scripts/benchmark_mono_pack.sh.
 
-  pvpython scripts/time_pack_pvpython.py PACK --steps N --threads T [--repeat R]
+  pvpython scripts/time_pack_pvpython.py PACK --steps N --threads T [--repeat R] [--frames F]
 
 The pack ("# key value" header, "id type diameter density x y z" rows; see
 scripts/liggghts_deck.py) is written as a CSV of x, y, z, Radius and read as ParaView
 reads any point table: CSV Reader -> Table To Points -> DEM Model From Points (the pack's
 box, not Fit To Input; its material) -> DEM Load Test, Mode Off, Settling Damping 0 (no
 Cundall damping, like LIGGGHTS), Requested Timestep = the pack's timestep (Timestep
-Safety 0.2, so that 5e-6 s on 1 mm grains is accepted), two frames of N steps. Timed: the
-UpdatePipeline of the second frame (N steps and the frame's output; the first frame holds
-the solver's set-up, as LIGGGHTS's "Loop time" leaves out its set-up). Prints one line
-per run: "run K threads T steps S seconds X pstep_s Y contacts C timestep DT path P";
-ROCKDEM_PLUGIN names the built plugin.
+Safety 0.2, so that 5e-6 s on 1 mm grains is accepted), frames of N steps. Timed: the
+UpdatePipeline of the F frames after the first (F = 1 by default; each is N steps and the
+frame's output; the first frame holds the solver's set-up, as LIGGGHTS's "Loop time"
+leaves out its set-up). --steps 1 --frames 30 measures what a frame costs besides its
+steps. Prints one line per run: "run K threads T steps S seconds X pstep_s Y contacts C
+timestep DT frames F path P" (X for the F frames); ROCKDEM_PLUGIN names the built plugin.
 """
 import argparse
 import os
@@ -26,7 +27,10 @@ ap.add_argument("pack")
 ap.add_argument("--steps", type=int, default=2000)
 ap.add_argument("--threads", type=int, default=1)
 ap.add_argument("--repeat", type=int, default=1)
+ap.add_argument("--frames", type=int, default=1, help="frames timed after the first (>= 1)")
 a = ap.parse_args()
+if a.frames < 1 or a.steps < 1:
+    sys.exit("--frames (%d) and --steps (%d) must be at least 1" % (a.frames, a.steps))
 
 plugin = os.environ.get("ROCKDEM_PLUGIN")
 if not plugin or not os.path.exists(plugin):
@@ -65,10 +69,11 @@ for run in range(a.repeat):
                  % (rockdem.read_only(model, "NumberOfElements"), len(rows), message))
     test = DEMLoadTest(Input=model, Mode="Off", SettlingDamping=0.0, TimestepSafety=0.2,  # noqa: F821
                        RequestedTimestep=dt, Gravity=[0.0, 0.0, -g("gravity")], Threads=a.threads,
-                       FrameInterval=a.steps * dt, NumberOfFrames=2)
+                       FrameInterval=a.steps * dt, NumberOfFrames=1 + a.frames)
     test.UpdatePipeline(a.steps * dt)  # frame 1: the solver's set-up and N steps, not timed
     start = time.perf_counter()
-    test.UpdatePipeline(2 * a.steps * dt)  # frame 2: N more steps and the frame's output
+    for frame in range(2, 2 + a.frames):
+        test.UpdatePipeline(frame * a.steps * dt)  # N more steps and the frame's output
     seconds = time.perf_counter() - start
     used = rockdem.read_only(test, "Timestep")
     path = rockdem.read_only(test, "SolverPath")
@@ -76,8 +81,9 @@ for run in range(a.repeat):
     status = rockdem.read_only(test, "LastMessage")
     if abs(used - dt) > 1e-12 * dt:
         sys.exit("DEM Load Test ran at %g s, not the pack's %g s (%s)" % (used, dt, status))
-    print("run %d threads %d steps %d seconds %.6f pstep_s %.6g contacts %s timestep %.9g path %s"
-          % (run, a.threads, a.steps, seconds, len(rows) * a.steps / seconds, contacts, used, path))
+    print("run %d threads %d steps %d seconds %.6f pstep_s %.6g contacts %s timestep %.9g frames %d path %s"
+          % (run, a.threads, a.steps, seconds, len(rows) * a.steps * a.frames / seconds, contacts, used,
+             a.frames, path))
     sys.stdout.flush()
     for proxy in (test, model, points, table):
         Delete(proxy)
