@@ -28,6 +28,7 @@
 #include <limits>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace rockdem
@@ -316,12 +317,17 @@ void ParticlesToPolyData(
 
   // Derived: the stress each particle carries (dem/ParticleStress.h), evaluated from the
   // model state, so a reloaded model shows the same values (not read back).
-  const std::vector<dem::StressTensor> stress =
-    stresses != nullptr ? *stresses : dem::particleStresses(model);
+  std::vector<dem::StressTensor> evaluated;
+  if (stresses == nullptr)
+  {
+    evaluated = dem::particleStresses(model);
+    stresses = &evaluated;
+  }
+  const std::vector<dem::StressTensor>& stress = *stresses;
   if (stress.size() != p.size())
   {
-    throw dem::InputError("ParticlesToPolyData: " + std::to_string(stress.size()) +
-      " particle stresses given for " + std::to_string(p.size()) + " particles.");
+    throw std::logic_error("ParticlesToPolyData: " + std::to_string(stress.size()) +
+      " particle stresses given for " + std::to_string(p.size()) + " particles");
   }
   const bool planar = model.domain.section2D;
   vtkNew<vtkDoubleArray> tensor;

@@ -83,10 +83,6 @@ double currentPorosity(const Model& model)
   // PorosityMeter's value. Where three or more particles overlap at one point, or particles
   // reach outside the box, the solid volume can still exceed the occupied volume: the
   // porosity is then 0, never negative (DEM Model From Points warns about the overlaps).
-  const PorosityMeter meter(model);
-  if (!(meter.occupiedVolume() > 0.0)) {
-    return 1.0;
-  }
   return currentPorosity(model, measureOverlaps(model).volume);
 }
 
