@@ -60,22 +60,19 @@ std::string cpuGpuDifference(const Model& start, const std::vector<std::int64_t>
     EXPECT_EQ(da.contacts, db.contacts);
     EXPECT_EQ(da.kineticEnergy, db.kineticEnergy);
     EXPECT_EQ(da.unbalancedForceRatio, db.unbalancedForceRatio);
+    auto sameForces = [](const InteractionForces& x, const InteractionForces& y) {
+      return statetest::sameBits(x.slotA, y.slotA) && statetest::sameBits(x.slotB, y.slotB) &&
+        statetest::sameBits(x.force, y.force) && statetest::sameBits(x.armA, y.armA) &&
+        statetest::sameBits(x.armB, y.armB);
+    };
     // The per-particle stress (issue 16) reads the interaction forces from the backend.
     const InteractionForces fa = a.interactionForces();
-    const InteractionForces fb = b.interactionForces();
     EXPECT_GT(fa.size(), 0u);
-    EXPECT_TRUE(statetest::sameBits(fa.slotA, fb.slotA) && statetest::sameBits(fa.slotB, fb.slotB) &&
-                statetest::sameBits(fa.force, fb.force) && statetest::sameBits(fa.armA, fb.armA) &&
-                statetest::sameBits(fa.armB, fb.armB))
-      << "interaction forces (the per-particle stress) differ";
+    EXPECT_TRUE(sameForces(fa, b.interactionForces())) << "interaction forces (the per-particle stress) differ";
     // A frame's stresses and porosity (DEM Load Test): the GPU run's, from a solver made
     // from its state, are the CPU run's, from its own lists; the overlaps from the
     // device's neighbour list are the search's.
-    const InteractionForces ga = a.freshInteractionForces();
-    const InteractionForces gb = b.freshInteractionForces();
-    EXPECT_TRUE(statetest::sameBits(ga.slotA, gb.slotA) && statetest::sameBits(ga.slotB, gb.slotB) &&
-                statetest::sameBits(ga.force, gb.force) && statetest::sameBits(ga.armA, gb.armA) &&
-                statetest::sameBits(ga.armB, gb.armB))
+    EXPECT_TRUE(sameForces(a.freshInteractionForces(), b.freshInteractionForces()))
       << "the forces of a solver made from the state differ";
     const OverlapReport oa = a.overlaps();
     const OverlapReport ob = b.overlaps();

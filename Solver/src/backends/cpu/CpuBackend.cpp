@@ -317,34 +317,47 @@ CpuBackend::CpuBackend(Model& model, const ContactModel& contactModel, double ti
   }
 }
 
+namespace {
+/// Calls f(array, its copy) for each array of the step state that an evaluation with no
+/// time increment changes and the next step reads (the list, once, for the copy and the
+/// restore): the net forces and torques, the wall reactions, the springs (the Coulomb limit
+/// at the evaluated normal force) and which pairs hold state. Not the bonds (no
+/// increment, no failure test) and not the positions and velocities.
+template <class Copy, class F> void forEachStepStateArray(Model& m, ContactState& im, Copy& c, F f)
+{
+  f(m.particles.force, c.force);
+  f(m.particles.torque, c.torque);
+  f(m.walls, c.walls);
+  f(im.pairSpring, c.pairSpring);
+  f(im.pairRolling, c.pairRolling);
+  f(im.pairLive, c.pairLive);
+  f(im.wallSpring, c.wallSpring);
+  f(im.wallRolling, c.wallRolling);
+}
+
+/// The same for the contacts' results that the evaluation rewrites whole (the pairs' rows
+/// are copied for the pairs that act only: evaluateFresh).
+template <class Copy, class F> void forEachResultArray(ContactState& im, Copy& c, F f)
+{
+  f(im.undampedForce, c.undampedForce);
+  f(im.wallForce, c.wallForce);
+  f(im.wallNormal, c.wallNormal);
+  f(im.wallStiffness, c.wallStiffness);
+  f(im.wallElastic, c.wallElastic);
+  f(im.wallTouching, c.wallTouching);
+}
+
+constexpr auto copyInto = [](const auto& array, auto& copy) { copy = array; };
+constexpr auto putBack = [](auto& array, auto& copy) { array.swap(copy); };
+} // namespace
+
 void CpuBackend::evaluateKeepingStepState()
 {
-  // An evaluation with no time increment changes, of what the next step reads: the net
-  // forces and torques, the wall reactions, the springs (the Coulomb limit at the
-  // evaluated normal force) and which pairs hold state. Not the bonds (no increment, no
-  // failure test) and not the positions and velocities.
-  ContactState& im = state_;
-  Particles& p = model_.particles;
-  StepStateCopy& c = stepStateCopy_;
-  c.force = p.force;
-  c.torque = p.torque;
-  c.walls = model_.walls;
-  c.pairSpring = im.pairSpring;
-  c.pairRolling = im.pairRolling;
-  c.pairLive = im.pairLive;
-  c.wallSpring = im.wallSpring;
-  c.wallRolling = im.wallRolling;
+  forEachStepStateArray(model_, state_, stepStateCopy_, copyInto);
   const bool drifted = drifted_;
   const bool driftedStale = driftedStale_;
   computeForces(false, false);
-  p.force.swap(c.force);
-  p.torque.swap(c.torque);
-  model_.walls.swap(c.walls);
-  im.pairSpring.swap(c.pairSpring);
-  im.pairRolling.swap(c.pairRolling);
-  im.pairLive.swap(c.pairLive);
-  im.wallSpring.swap(c.wallSpring);
-  im.wallRolling.swap(c.wallRolling);
+  forEachStepStateArray(model_, state_, stepStateCopy_, putBack);
   drifted_ = drifted;
   driftedStale_ = driftedStale;
 }
@@ -352,8 +365,8 @@ void CpuBackend::evaluateKeepingStepState()
 bool CpuBackend::evaluateFresh(const std::function<void(const ContactState&)>& read)
 {
   // Besides the step state, the evaluation rewrites the results of the contacts: those
-  // that acted at the last step are copied (a pair's row is read only while it has a
-  // normal force), the wall entries and the particles' undamped forces whole.
+  // of the pairs that acted at the last step are copied (a pair's row is read only while
+  // it has a normal force), the wall entries' and the particles' undamped forces whole.
   ContactState& im = state_;
   ActingCopy& a = actingCopy_;
   const bool rolling = !im.pairRollingTorque.empty();
@@ -371,12 +384,7 @@ bool CpuBackend::evaluateFresh(const std::function<void(const ContactState&)>& r
       }
     }
   }
-  a.undampedForce = im.undampedForce;
-  a.wallForce = im.wallForce;
-  a.wallNormal = im.wallNormal;
-  a.wallStiffness = im.wallStiffness;
-  a.wallElastic = im.wallElastic;
-  a.wallTouching = im.wallTouching;
+  forEachResultArray(im, a, copyInto);
   evaluateKeepingStepState();
   read(im);
   std::fill(im.pairNormal.begin(), im.pairNormal.end(), 0.0);
@@ -388,15 +396,9 @@ bool CpuBackend::evaluateFresh(const std::function<void(const ContactState&)>& r
       im.pairRollingTorque[k] = a.rollingTorque[q];
     }
   }
-  im.undampedForce.swap(a.undampedForce);
-  im.wallForce.swap(a.wallForce);
-  im.wallNormal.swap(a.wallNormal);
-  im.wallStiffness.swap(a.wallStiffness);
-  im.wallElastic.swap(a.wallElastic);
-  im.wallTouching.swap(a.wallTouching);
+  forEachResultArray(im, a, putBack);
   return true;
 }
-
 
 std::string CpuBackend::path() const
 {
