@@ -353,11 +353,12 @@ constexpr auto putBack = [](auto& array, auto& copy) { array.swap(copy); };
 
 void CpuBackend::evaluateKeepingStepState()
 {
-  forEachStepStateArray(model_, state_, stepStateCopy_, copyInto);
+  StepStateCopy copy;
+  forEachStepStateArray(model_, state_, copy, copyInto);
   const bool drifted = drifted_;
   const bool driftedStale = driftedStale_;
   computeForces(false, false);
-  forEachStepStateArray(model_, state_, stepStateCopy_, putBack);
+  forEachStepStateArray(model_, state_, copy, putBack);
   drifted_ = drifted;
   driftedStale_ = driftedStale;
 }
@@ -368,12 +369,8 @@ bool CpuBackend::evaluateFresh(const std::function<void(const ContactState&)>& r
   // of the pairs that acted at the last step are copied (a pair's row is read only while
   // it has a normal force), the wall entries' and the particles' undamped forces whole.
   ContactState& im = state_;
-  ActingCopy& a = actingCopy_;
+  ActingCopy a;
   const bool rolling = !im.pairRollingTorque.empty();
-  a.pair.clear();
-  a.row.clear();
-  a.pairNormal.clear();
-  a.rollingTorque.clear();
   for (std::size_t k = 0; k < im.pairNormal.size(); ++k) {
     if (im.pairNormal[k] != 0.0) {
       a.pair.push_back(static_cast<std::uint32_t>(k));
