@@ -92,15 +92,13 @@ bool measureOverlaps(const Model& model, const std::vector<std::uint32_t>& pairI
   if (pairI.size() != pairJ.size()) {
     return false;
   }
+  OverlapReport report;
   for (std::size_t k = 0; k < pairI.size(); ++k) {
     const bool ordered = pairI[k] < pairJ[k] && pairJ[k] < n &&
       (k == 0 || pairI[k - 1] < pairI[k] || (pairI[k - 1] == pairI[k] && pairJ[k - 1] < pairJ[k]));
     if (!ordered) {
       return false;
     }
-  }
-  OverlapReport report;
-  for (std::size_t k = 0; k < pairI.size(); ++k) {
     addIfOverlapping(report, model, pairI[k], pairJ[k]);
   }
   out = report;

@@ -472,22 +472,28 @@ InteractionForces Simulation::freshInteractionForces()
     return out;
   }
   backend_->sync();
-  Model copy = model_; // the Simulation may set up walls and the timestep on its model
+  return dem::freshInteractionForces(model_);
+}
+
+InteractionForces freshInteractionForces(const Model& model)
+{
+  Model copy = model; // the Simulation may set up walls and the timestep on its model
   const Simulation fresh(copy);
   return fresh.interactionForces();
 }
 
 OverlapReport Simulation::overlaps()
 {
-  if (broken_) {
-    return measureOverlaps(model_); // the lists are those of the state the run stopped in
+  // After an instability the lists are those of the state the run stopped in; a list not
+  // sorted by (i, j) would sum in another order: then the search.
+  if (!broken_) {
+    const ContactState& im = backend_->sync();
+    OverlapReport report;
+    if (measureOverlaps(model_, im.pairI, im.pairJ, report)) {
+      return report;
+    }
   }
-  const ContactState& im = backend_->sync();
-  OverlapReport report;
-  if (!measureOverlaps(model_, im.pairI, im.pairJ, report)) {
-    report = measureOverlaps(model_); // a list not sorted by (i, j): the search's order
-  }
-  return report;
+  return measureOverlaps(model_);
 }
 
 InteractionForces Simulation::interactionForces(const ContactState& im) const

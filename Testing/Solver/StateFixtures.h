@@ -9,6 +9,7 @@
 #include "dem/LoadTest.h"
 #include "dem/Model.h"
 #include "dem/Pack.h"
+#include "dem/ParticleStress.h"
 #include "dem/Simulation.h"
 #include "dem/Specimen.h"
 #include "Specimens.h"
@@ -166,6 +167,14 @@ template <class T>
 bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
 {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+/// The two lists of interaction forces (Simulation::interactionForces) are bitwise
+/// identical, entry for entry.
+inline bool sameForces(const InteractionForces& a, const InteractionForces& b)
+{
+  return sameBits(a.slotA, b.slotA) && sameBits(a.slotB, b.slotB) && sameBits(a.force, b.force) &&
+    sameBits(a.armA, b.armA) && sameBits(a.armB, b.armB);
 }
 
 /// Empty when the particles, contacts, bonds, walls, test state and clock of the two

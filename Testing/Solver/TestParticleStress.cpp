@@ -163,14 +163,7 @@ TEST(ParticleStress, ReloadedModelHasTheSameStressesBitForBit)
   EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(StressTensor)), 0);
 }
 
-namespace {
-bool sameForces(const InteractionForces& a, const InteractionForces& b)
-{
-  using statetest::sameBits;
-  return sameBits(a.slotA, b.slotA) && sameBits(a.slotB, b.slotB) && sameBits(a.force, b.force) &&
-    sameBits(a.armA, b.armA) && sameBits(a.armB, b.armB);
-}
-} // namespace
+using statetest::sameForces;
 
 // The per-particle stresses of a running stage come from its own solver's lists
 // (freshInteractionForces: every contact evaluated once with no time increment, then the

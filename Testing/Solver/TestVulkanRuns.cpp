@@ -60,11 +60,7 @@ std::string cpuGpuDifference(const Model& start, const std::vector<std::int64_t>
     EXPECT_EQ(da.contacts, db.contacts);
     EXPECT_EQ(da.kineticEnergy, db.kineticEnergy);
     EXPECT_EQ(da.unbalancedForceRatio, db.unbalancedForceRatio);
-    auto sameForces = [](const InteractionForces& x, const InteractionForces& y) {
-      return statetest::sameBits(x.slotA, y.slotA) && statetest::sameBits(x.slotB, y.slotB) &&
-        statetest::sameBits(x.force, y.force) && statetest::sameBits(x.armA, y.armA) &&
-        statetest::sameBits(x.armB, y.armB);
-    };
+    using statetest::sameForces;
     // The per-particle stress (issue 16) reads the interaction forces from the backend.
     const InteractionForces fa = a.interactionForces();
     EXPECT_GT(fa.size(), 0u);

@@ -69,6 +69,12 @@ void resetWalls(Model& model);
 struct InteractionForces;
 struct OverlapReport;
 
+/// The interaction forces a Simulation newly made from `model` reports (its
+/// interactionForces(): every contact evaluated once with no time increment), evaluated on
+/// a copy (the model itself is not changed). Simulation::freshInteractionForces gives the
+/// same bits from a running solver.
+InteractionForces freshInteractionForces(const Model& model);
+
 /// Where a Simulation steps: the CPU backend, or the GPU (Vulkan) backend when a device
 /// can run the model (else the CPU, and path() says why).
 enum class SolverDevice { CPU, GPU };

@@ -52,9 +52,7 @@ std::vector<StressTensor> particleStresses(const Model& model)
   if (model.particles.empty()) {
     return {};
   }
-  Model copy = model; // the Simulation may set up walls and the timestep on its model
-  const Simulation simulation(copy);
-  return particleStresses(copy, simulation.interactionForces());
+  return particleStresses(model, freshInteractionForces(model));
 }
 
 double meanStress(const StressTensor& s, bool section2D)
